@@ -1,0 +1,24 @@
+#pragma once
+// What the pixel pipeline hands to detection: blobs found on the rectified
+// field grid of one camera frame.
+#include <cstdint>
+#include <vector>
+
+#include "core/units.h"
+
+namespace dv {
+
+struct Blob {
+  FieldMm position;  // field mm on the rectification plane (z = plane height)
+  GridPx grid;       // sub-cell peak position on the rectified grid
+  float score = 0;   // normalised blob score (dimensionless, higher = stronger)
+  float rgb[3] = {0, 0, 0};  // mean color of the blob's disc, 0..255 per channel
+};
+
+// Blobs of one frame, strongest first. Capacity is reserved once per camera.
+struct BlobList {
+  double plane_height = 150;  // mm, the plane the grid lies on
+  std::vector<Blob> blobs;
+};
+
+}  // namespace dv
