@@ -1,0 +1,265 @@
+#include "io/frame_source.h"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "core/error.h"
+
+namespace dv {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool endsWith(const std::vector<unsigned char>& bytes, size_t size, const unsigned char* tail,
+              size_t n) {
+  return size >= n && std::equal(tail, tail + n, bytes.begin() + static_cast<long>(size - n));
+}
+
+// Decoders fill a truncated JPEG with gray and warn on stderr, and some PNG
+// paths do similar; checking the end markers catches the cut before decoding.
+// Returns an empty string when the bytes look complete.
+std::string truncationReason(const std::vector<unsigned char>& bytes, size_t size) {
+  static const unsigned char kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static const unsigned char kPngEnd[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  if (size >= 8 && std::equal(kPngMagic, kPngMagic + 8, bytes.begin())) {
+    return endsWith(bytes, size, kPngEnd, 8) ? "" : "truncated PNG (no IEND chunk at the end)";
+  }
+  if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) {
+    // Allow trailing padding after EOI, as some cameras write it.
+    for (size_t i = size; i >= 2 && i + 64 >= size; --i)
+      if (bytes[i - 2] == 0xff && bytes[i - 1] == 0xd9) return "";
+    return "truncated JPEG (no end-of-image marker)";
+  }
+  return "";
+}
+
+bool readFileInto(const std::string& path, std::vector<unsigned char>& buffer, size_t& size) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  if (end < 0) return false;
+  in.seekg(0, std::ios::beg);
+  size = static_cast<size_t>(end);
+  if (buffer.size() < size) buffer.resize(size);
+  in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(size));
+  return static_cast<size_t>(in.gcount()) == size;
+}
+
+std::vector<std::string> imagesInDirectory(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_regular_file() && isImageFileName(entry.path().string()))
+      out.push_back(entry.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::string> imagesMatchingGlob(const std::string& pattern) {
+  std::vector<std::string> out;
+  glob_t g{};
+  if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) {
+    for (size_t i = 0; i < g.gl_pathc; ++i) {
+      std::string p = g.gl_pathv[i];
+      if (fs::is_regular_file(p) && isImageFileName(p)) out.push_back(std::move(p));
+    }
+  }
+  globfree(&g);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+const char* pixelFormatName(PixelFormat f) {
+  switch (f) {
+    case PixelFormat::Bgr8: return "bgr8";
+    case PixelFormat::BayerRggb8: return "bayer-rggb8";
+    case PixelFormat::BayerGrbg8: return "bayer-grbg8";
+    case PixelFormat::BayerGbrg8: return "bayer-gbrg8";
+    case PixelFormat::BayerBggr8: return "bayer-bggr8";
+  }
+  return "unknown";
+}
+
+PixelFormat parseBayerPattern(const std::string& text, const std::string& source) {
+  std::string t = text;
+  std::transform(t.begin(), t.end(), t.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (t == "rggb") return PixelFormat::BayerRggb8;
+  if (t == "grbg") return PixelFormat::BayerGrbg8;
+  if (t == "gbrg") return PixelFormat::BayerGbrg8;
+  if (t == "bggr") return PixelFormat::BayerBggr8;
+  throw InputError(source, "unknown Bayer pattern '" + text + "' (expected rggb, grbg, gbrg or bggr)");
+}
+
+bool isImageFileName(const std::string& path) {
+  static const char* kExt[] = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pnm", ".bmp", ".tif", ".tiff"};
+  const std::string ext = lowerExtension(path);
+  return std::any_of(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; });
+}
+
+bool isVideoFileName(const std::string& path) {
+  static const char* kExt[] = {".mp4", ".avi", ".mkv", ".mov", ".webm", ".m4v", ".mpg", ".mpeg"};
+  const std::string ext = lowerExtension(path);
+  return std::any_of(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; });
+}
+
+// ---- still images ----
+
+ImageSequenceSource::ImageSequenceSource(std::vector<std::string> paths, FrameSourceOptions options,
+                                         std::string description)
+    : paths_(std::move(paths)), options_(options), description_(std::move(description)) {}
+
+bool ImageSequenceSource::next(Frame& f) {
+  while (cursor_ < paths_.size()) {
+    const uint32_t index = static_cast<uint32_t>(cursor_);
+    const std::string& path = paths_[cursor_++];
+    size_t size = 0;
+    if (!readFileInto(path, file_bytes_, size)) {
+      recordSkip(path, "cannot read the file");
+      continue;
+    }
+    if (size == 0) {
+      recordSkip(path, "empty file");
+      continue;
+    }
+    if (std::string why = truncationReason(file_bytes_, size); !why.empty()) {
+      recordSkip(path, why);
+      continue;
+    }
+    const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, file_bytes_.data());
+    cv::Mat& decoded = decoded_;
+    try {
+      cv::imdecode(bytes, cv::IMREAD_UNCHANGED, &decoded);
+    } catch (const cv::Exception& e) {
+      recordSkip(path, std::string("cannot decode the image: ") + e.what());
+      continue;
+    }
+    if (decoded.empty()) {
+      recordSkip(path, "not a readable image (corrupt or unsupported format)");
+      continue;
+    }
+    if (decoded.depth() != CV_8U) {
+      recordSkip(path, "unsupported pixel depth (only 8-bit images are accepted)");
+      continue;
+    }
+    switch (decoded.channels()) {
+      case 1:
+        decoded.copyTo(f.image);
+        f.format = options_.bayer;
+        break;
+      case 3:
+        decoded.copyTo(f.image);
+        f.format = PixelFormat::Bgr8;
+        break;
+      case 4:
+        cv::cvtColor(decoded, f.image, cv::COLOR_BGRA2BGR);
+        f.format = PixelFormat::Bgr8;
+        break;
+      default:
+        recordSkip(path, "unsupported channel count " + std::to_string(decoded.channels()));
+        continue;
+    }
+    f.index = index;
+    f.t_capture = index / options_.fps;
+    f.name = path;
+    return true;
+  }
+  return false;
+}
+
+// ---- video ----
+
+struct VideoSource::Impl {
+  cv::VideoCapture capture;
+};
+
+VideoSource::VideoSource(const std::string& path, FrameSourceOptions options)
+    : impl_(std::make_unique<Impl>()), path_(path), options_(options) {
+  if (!fs::exists(path)) throw InputError(path, "no such video file");
+  bool opened = false;
+  try {
+    opened = impl_->capture.open(path, cv::CAP_FFMPEG);
+  } catch (const cv::Exception&) {
+    opened = false;
+  }
+  if (!opened || !impl_->capture.isOpened())
+    throw InputError(path, "cannot open as a video (not a video file, or no decoder for it)");
+  const double count = impl_->capture.get(cv::CAP_PROP_FRAME_COUNT);
+  if (count > 0) frame_count_ = static_cast<long>(count);
+}
+
+VideoSource::~VideoSource() = default;
+
+bool VideoSource::next(Frame& f) {
+  bool ok = false;
+  try {
+    ok = impl_->capture.read(f.image);
+  } catch (const cv::Exception& e) {
+    recordSkip(path_ + "#" + std::to_string(index_), std::string("decoder error: ") + e.what());
+    return false;
+  }
+  if (!ok || f.image.empty()) {
+    if (frame_count_ > 0 && index_ + 1 < static_cast<uint32_t>(frame_count_))
+      recordSkip(path_ + "#" + std::to_string(index_),
+                 "the video ended early (" + std::to_string(index_) + " of " +
+                     std::to_string(frame_count_) + " frames decoded)");
+    return false;
+  }
+  if (f.image.channels() == 1) {
+    f.format = options_.bayer;
+  } else {
+    f.format = PixelFormat::Bgr8;
+  }
+  const double ms = impl_->capture.get(cv::CAP_PROP_POS_MSEC);
+  f.index = index_;
+  f.t_capture = (ms > 0 || index_ == 0) ? ms / 1000.0 : index_ / options_.fps;
+  f.name = path_ + "#" + std::to_string(index_);
+  ++index_;
+  return true;
+}
+
+// ---- factory ----
+
+std::unique_ptr<FrameSource> openFrameSource(const std::string& spec,
+                                             const FrameSourceOptions& options) {
+  if (!(options.fps > 0)) throw InputError("command line", "--fps must be positive");
+  const bool is_glob = spec.find_first_of("*?[") != std::string::npos && !fs::exists(spec);
+  if (is_glob) {
+    auto paths = imagesMatchingGlob(spec);
+    if (paths.empty()) throw InputError(spec, "the pattern matches no image files");
+    return std::make_unique<ImageSequenceSource>(std::move(paths), options, "images matching " + spec);
+  }
+  std::error_code ec;
+  if (!fs::exists(spec, ec)) throw InputError(spec, "no such file or directory");
+  if (fs::is_directory(spec, ec)) {
+    auto paths = imagesInDirectory(spec);
+    if (paths.empty()) throw InputError(spec, "the directory holds no image files");
+    return std::make_unique<ImageSequenceSource>(std::move(paths), options, "images in " + spec);
+  }
+  if (isImageFileName(spec)) {
+    return std::make_unique<ImageSequenceSource>(std::vector<std::string>{spec}, options,
+                                                 "image " + spec);
+  }
+  // Anything else is handed to the video decoder, which names it if it fails.
+  return std::make_unique<VideoSource>(spec, options);
+}
+
+}  // namespace dv
