@@ -1,0 +1,150 @@
+#pragma once
+// What the synthetic renderer draws: cameras, field, robots, ball, materials,
+// lighting and sensor effects of one scene (a single frame or a motion
+// sequence). Scenes come from YAML files (see config/scenes/) or from the
+// shipped presets; everything is deterministic for the scene's seed.
+// Units: millimetres, radians, seconds; colors are 0..255 per channel as the
+// sensor would read them under unit light, exposure and white balance.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/units.h"
+#include "geometry/camera_model.h"
+#include "geometry/field_model.h"
+#include "geometry/robot_pattern.h"
+
+namespace dv {
+
+struct Rgb {
+  double r = 0, g = 0, b = 0;
+};
+
+struct SceneCamera {
+  CameraCalibration calib;  // image_width / image_height are set
+};
+
+// A camera at `position` looking at `look_at` (field mm). The principal point
+// is the image center plus `principal_offset` (px). The image is upright:
+// field +z appears up, or field +y for cameras looking (nearly) straight down.
+SceneCamera makeCamera(uint32_t id, const FieldPoint& position, const FieldPoint& look_at,
+                       double focal_length, double distortion, ImagePx principal_offset,
+                       uint32_t width, uint32_t height);
+
+struct SceneRobot {
+  Team team = Team::Yellow;
+  int id = 0;                   // pattern id 0..15
+  FieldMm position;             // center blob, at t = 0
+  double orientation = 0;       // rad, front direction, at t = 0
+  double height = 140;          // mm, top plane (where the pattern lies)
+  FieldMm velocity;             // mm/s
+  double angular_velocity = 0;  // rad/s
+};
+
+struct SceneBall {
+  FieldPoint position{0, 0, 21.5};  // center, at t = 0; z = 21.5 resting
+  FieldPoint velocity;              // mm/s
+  bool present = true;
+};
+
+// An elliptic patch of light (gain > 1, sun through a window) or shadow
+// (gain < 1) on the field, with a soft edge.
+struct LightPatch {
+  FieldMm center;
+  double radius_x = 500, radius_y = 300;  // mm, semi-axes
+  double angle = 0;                       // rad, of the x semi-axis
+  double gain = 1.8;                      // light multiplier inside
+  double softness = 0.3;                  // edge width as a fraction of the radii
+};
+
+struct SceneLighting {
+  double exposure = 1.0;  // overall brightness multiplier (exposure x gain)
+  Rgb white_balance{1, 1, 1};  // per-channel gains applied by the camera
+  // Smooth brightness gradient across the image: brightest / darkest = ratio,
+  // increasing along image direction `uneven_direction` (rad, 0 = +u).
+  double uneven_ratio = 1.0;
+  double uneven_direction = 0;
+  std::vector<LightPatch> sun_patches;  // gain > 1
+  std::vector<LightPatch> shadows;      // gain < 1
+  // Soft contact shadows that robots and the ball cast on the carpet (0..1).
+  double object_shadow = 0.45;
+  // Mains flicker: brightness x (1 + amplitude sin(2 pi f t)), averaged over
+  // the exposure time.
+  double flicker_amplitude = 0;
+  double flicker_frequency = 100;  // Hz
+  double exposure_time = 0.004;    // s, shutter open time (motion blur, flicker)
+};
+
+struct SceneMaterials {
+  Rgb carpet{40, 110, 50};
+  double carpet_texture = 0.12;  // relative brightness variation of the carpet
+  Rgb line{235, 235, 235};
+  Rgb wall{25, 25, 28};
+  Rgb goal{230, 230, 230};
+  Rgb floor{90, 90, 95};          // outside the walls
+  Rgb background{60, 60, 70};     // rays that hit nothing (hall, horizon)
+  Rgb robot_top{22, 22, 22};
+  Rgb robot_body{35, 35, 38};
+  Rgb yellow{230, 210, 40};
+  Rgb blue{40, 80, 200};
+  Rgb green{60, 200, 80};
+  Rgb pink{240, 90, 180};
+  Rgb ball{255, 120, 20};
+};
+
+struct SceneSpec {
+  std::string name = "scene";
+  uint64_t seed = 1;
+  FieldModel field = FieldModel::divisionB();
+  std::vector<SceneCamera> cameras;
+  std::vector<SceneRobot> robots;
+  SceneBall ball;
+  SceneMaterials materials;
+  SceneLighting lighting;
+  double noise_sigma = 1.5;   // 8-bit levels, read noise
+  double shot_noise = 0.05;   // variance per level of signal (Poisson-like)
+  double lens_blur_px = 0.5;  // Gaussian sigma in pixels, 0 = sharp
+  int frames = 1;
+  double fps = 60;
+  bool motion_blur = false;
+  int motion_blur_samples = 5;  // sub-frame renders averaged per frame
+  bool bayer = true;            // write 8-bit RGGB PGM frames
+  bool write_png = false;       // write PNG RGB frames as well
+  int antialias = 2;            // samples per pixel axis
+};
+
+// Reads a scene YAML file. Throws InputError(path, "line L, column C: ...")
+// for malformed YAML, wrong types, unknown keys (named) and impossible values;
+// InputError(path, "cannot open ...") for a missing file.
+SceneSpec loadScene(const std::string& path);
+// The same from YAML text; `source` names the text in errors.
+SceneSpec sceneFromYaml(const std::string& text, const std::string& source);
+
+// The shipped presets (config/scenes/<name>.yaml) by name. Throws
+// InputError("preset", "unknown preset 'x' (known: ...)").
+SceneSpec presetScene(const std::string& name);
+std::vector<std::string> presetNames();
+// Where the presets are read from: $DV_SCENES_DIR, else config/scenes of the
+// source tree this library was built from.
+std::string presetDirectory();
+
+// The built-in scene `dotvision run` uses when no camera is configured: one
+// top-down camera over a Division B half field, 1224x1024 Bayer, 6+6 robots
+// and a ball, a few frames with motion.
+SceneSpec defaultScene();
+
+// Places `yellow` + `blue` robots with random distinct ids, at least
+// `min_distance` mm apart (and from the ball), on the field inside camera
+// `camera_index`'s view (center blob at least `margin_px` inside the image),
+// with random orientations. Deterministic for `seed`. Throws
+// std::invalid_argument when the robots do not fit.
+std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_index,
+                                          int yellow, int blue, uint64_t seed,
+                                          double min_distance = 200, double margin_px = 40);
+
+// Position and orientation of a robot / the ball at time t (constant velocity).
+FieldMm robotPositionAt(const SceneRobot& r, double t);
+double robotOrientationAt(const SceneRobot& r, double t);
+FieldPoint ballPositionAt(const SceneBall& b, double t);
+
+}  // namespace dv
