@@ -1,0 +1,121 @@
+#pragma once
+// Blob assignment (thesis §5.3): one camera frame's blobs -> robots (team, id,
+// position, orientation) and balls, with confidence and optional tracking.
+//
+// Per frame:
+//  1. every blob is moved along its camera ray from the blob plane to the
+//     robot heights and the ball height (pattern offsets are mm on the robot
+//     top, so the fit needs positions at that height);
+//  2. position based hypotheses: each blob as a center, side blobs within
+//     90 mm taken in increasing angle, scored with eq. 5.21, best per center,
+//     no two robots overlapping by the rule shape;
+//  3. position based color classes: k-means (k = 2) for yellow/blue centers
+//     and green/pink sides with the separation test eq. 5.24, per-robot local
+//     side colors, retention/reference forces eq. 5.25;
+//  4. tracking (§5.3.6): robots missing blobs are recovered from the
+//     predicted pose with two or more blobs; identities change only after
+//     several frames of agreeing contrary evidence;
+//  5. balls: blobs outside robots whose color is nearest to the learned
+//     orange class among all learned classes, ranked by color margin, blob
+//     strength and temporal consistency.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/units.h"
+#include "geometry/camera_model.h"
+#include "geometry/field_model.h"
+#include "geometry/robot_pattern.h"
+#include "pipeline/blob.h"
+
+namespace dv {
+
+struct RobotDetection {
+  Team team = Team::Yellow;
+  int id = 0;              // pattern id 0..15
+  FieldMm position;        // robot center at its height
+  double orientation = 0;  // rad, front direction, (-pi, pi]
+  double height = 140;     // mm, the team's configured robot height
+  float confidence = 0;    // 0..1
+  ImagePx pixel;           // image pixel of the robot center
+};
+
+struct BallDetection {
+  FieldPoint position;  // z = ball radius
+  float confidence = 0;
+  ImagePx pixel;
+};
+
+// Each list sorted by confidence, highest first.
+struct Detections {
+  std::vector<BallDetection> balls;
+  std::vector<RobotDetection> robots;
+};
+
+// An RGB reference color (0..255 per channel). References are only weak
+// priors: class colors are learned from the frames.
+struct ColorRef {
+  float r = 0, g = 0, b = 0;
+};
+
+struct DetectorOptions {
+  double robot_height_yellow = 140;  // mm
+  double robot_height_blue = 140;    // mm
+  double ball_radius = 21.5;         // mm, balls are reported at z = radius
+  bool tracking = true;
+
+  // --- position based assignment (§5.3.3) ---
+  double side_search_radius = 90;  // mm, side blobs around a center blob
+  double score_scale = 10;         // mm, offset giving score 0.5 (eq. 5.21)
+  double min_robot_score = 0.1;    // hypotheses below are dropped
+  // Single-frame hypotheses need at least this many side blobs (4 = thesis).
+  int min_side_blobs = 4;
+
+  // --- color classes (§5.3.5) ---
+  double retention_force = 0.7;  // f_p, pull to the previous class color
+  double reference_force = 0.1;  // f_r, pull to the reference color
+  ColorRef ref_yellow{230, 210, 40};
+  ColorRef ref_blue{40, 80, 200};
+  ColorRef ref_green{60, 200, 80};
+  ColorRef ref_pink{240, 90, 180};
+  ColorRef ref_orange{255, 120, 20};
+  ColorRef ref_field{40, 110, 50};
+  ColorRef ref_white{235, 235, 235};
+
+  // --- tracking (§5.3.6) ---
+  double max_robot_acceleration = 6500;  // mm/s^2
+  double max_prediction_dt = 0.05;       // s, cap in the uncertainty
+  double min_uncertainty = 20;           // mm
+  double track_gate = 90;                // mm, detection <-> track association
+  // A tracked robot changes team/id only after this many consecutive frames
+  // that agree on the same different identity.
+  int identity_switch_frames = 3;
+
+  // --- balls ---
+  double min_ball_confidence = 0.3;
+  double max_ball_speed = 6500;  // mm/s, gate for temporal consistency
+  int max_balls = 8;
+};
+
+class Detector {
+ public:
+  Detector(const CameraModel& camera, const FieldModel& field, const DetectorOptions& opt);
+  ~Detector();
+  Detector(Detector&&) noexcept;
+  Detector& operator=(Detector&&) noexcept;
+
+  // Forget all history (a new, unrelated frame or sequence).
+  void reset();
+  // blobs: one frame's blobs on the plane blobs.plane_height; t_capture in
+  // seconds. No allocation after warm-up (buffers are kept and reserved).
+  void process(const BlobList& blobs, double t_capture, Detections& out);
+
+  const DetectorOptions& options() const { return opt_; }
+
+ private:
+  struct Impl;
+  DetectorOptions opt_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dv
