@@ -1,0 +1,32 @@
+#pragma once
+// Options and per-stage timings of the pixel pipeline.
+
+namespace dv {
+
+enum class ColorSpace { DRGB, YUV };
+enum class BayerPattern { None /* input is BGR 8UC3 */, RGGB, GRBG, GBRG, BGGR };
+enum class BlobScoreKind { QuadrantMin, CircleMin };
+
+struct PipelineOptions {
+  ColorSpace color = ColorSpace::DRGB;
+  BlobScoreKind score = BlobScoreKind::QuadrantMin;
+  BayerPattern bayer = BayerPattern::RGGB;
+  double plane_height = 150;  // mm, rectification plane (max robot height)
+  // Normalised blob score threshold: scores are chroma contrast relative to
+  // local brightness, so one value serves every exposure and resolution.
+  double threshold = 0.02;
+  int max_blobs = 2000;
+  int threads = 0;  // 0 = all cores
+};
+
+// Wall time of each stage of the last frame, milliseconds.
+struct StageTimes {
+  double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
+         peaks_ms = 0, total_ms = 0;
+};
+
+// Parses "rggb", "grbg", "gbrg", "bggr" or "none" (case-insensitive); false if unknown.
+bool parseBayerPattern(const char* text, BayerPattern& out);
+const char* bayerPatternName(BayerPattern p);
+
+}  // namespace dv
