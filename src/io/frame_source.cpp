@@ -98,7 +98,7 @@ const char* pixelFormatName(PixelFormat f) {
   return "unknown";
 }
 
-PixelFormat parseBayerPattern(const std::string& text, const std::string& source) {
+PixelFormat bayerFormatFromName(const std::string& text, const std::string& source) {
   std::string t = text;
   std::transform(t.begin(), t.end(), t.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -25,7 +25,7 @@ enum class PixelFormat {
 const char* pixelFormatName(PixelFormat f);
 // "rggb", "grbg", "gbrg", "bggr" (case-insensitive) -> Bayer format.
 // Throws InputError naming `source` for anything else.
-PixelFormat parseBayerPattern(const std::string& text, const std::string& source);
+PixelFormat bayerFormatFromName(const std::string& text, const std::string& source);
 
 struct Frame {
   cv::Mat image;            // reused between frames; Bgr8 or one Bayer layout

@@ -1,0 +1,29 @@
+#pragma once
+// Detections of one camera frame -> the league's SSL_DetectionFrame, and the
+// wrapper packet that carries it on the wire and in logs.
+// (Reads detection's plain result structs only; no code of that module.)
+#include <cstdint>
+
+#include "detection/detector.h"
+#include "dotvision/ssl_wrapper.pb.h"
+
+namespace dv {
+
+struct FrameStamp {
+  uint32_t camera_id = 0;
+  uint32_t frame_number = 0;  // per camera, counting from 0
+  double t_capture = 0;       // s
+  double t_sent = 0;          // s
+};
+
+// Clears `out` (keeping its storage) and fills every required field plus
+// robot_id, orientation, height and ball z. Robots are split by team; the
+// order of each list is the detector's (confidence, highest first).
+void fillDetectionFrame(const Detections& detections, const FrameStamp& stamp,
+                        ssl::SSL_DetectionFrame& out);
+
+// The same into a wrapper packet with source SSL_SOURCE_OTHER and no geometry.
+void fillDetectionPacket(const Detections& detections, const FrameStamp& stamp,
+                         ssl::SSL_WrapperPacket& out);
+
+}  // namespace dv
