@@ -1,0 +1,31 @@
+#pragma once
+// Extrinsics without clicked points (beyond the thesis): hypotheses from
+// matching pairs of detected straight lines to pairs of model lines near the
+// camera's field region, scored on the line pixels, the best refined on all
+// line pixels coarse to fine. Symmetric mix-ups are rejected by the expected
+// extent (the camera's region must be in view); when two different poses fit
+// about equally well the result is "cannot decide".
+#include <optional>
+#include <string>
+
+#include "geometry/calibration/calibrate_camera.h"
+#include "geometry/calibration/camera_params.h"
+
+namespace dv {
+
+struct AutoExtrinsicsOptions {
+  std::optional<double> camera_height_mm;
+  int max_refined_hypotheses = 6;
+};
+
+struct AutoExtrinsicsResult {
+  std::optional<CameraParams> params;
+  std::string reason;  // why params is empty
+  int hypotheses = 0;
+};
+
+AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const PixelDistortion& distortion,
+                                           const FieldModel& field, const FieldRect& region, int width,
+                                           int height, const AutoExtrinsicsOptions& options);
+
+}  // namespace dv

@@ -1,0 +1,65 @@
+#pragma once
+// One camera's calibration from one image of the field, end to end: line
+// pixels, line groups, distortion and principal point, then the pose either
+// from user points (four-point mode) or from the lines alone (automatic
+// mode), a robust refinement on all line pixels, and the quality gate.
+#include <cstdint>
+#include <optional>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "geometry/calibration/calibration_quality.h"
+#include "geometry/calibration/intrinsics.h"
+#include "geometry/calibration/line_groups.h"
+#include "geometry/calibration/point_pose.h"
+#include "geometry/camera_model.h"
+#include "geometry/field_model.h"
+
+namespace dv {
+
+struct CalibrationRequest {
+  uint32_t camera_id = 0;
+  // Cameras on the field in SSL-Vision's layout; 0 picks 4 for a Division A
+  // sized field and 2 otherwise.
+  unsigned num_cameras = 0;
+  // Four or more known field points with their image positions; empty asks
+  // for the automatic mode.
+  std::vector<PointCorrespondence> points;
+  std::optional<double> camera_height_mm;
+  std::string source = "image";  // names the image in messages
+};
+
+// What the image shows of the field lines, computed once per image.
+struct LineObservation {
+  cv::Mat mask;                // 255 at line pixels
+  cv::Mat distance;            // distance transform to the nearest line pixel
+  std::vector<ImagePx> pixels; // thinned list of line pixels
+  std::vector<LineGroup> groups;
+  int half_width_px = 3;
+};
+
+LineObservation observeLines(const cv::Mat& bgr, const FieldModel& field, const FieldRect& region);
+
+struct CalibrationOutcome {
+  CameraCalibration calibration;
+  CalibrationMeasures measures;
+  // Set when no calibration may be published, with the reason; the caller
+  // must not write or send `calibration` then.
+  std::optional<std::string> problem;
+  std::optional<IntrinsicsResult> intrinsics;
+  bool refinement_accepted = false;
+  bool automatic = false;
+};
+
+// The region of the field camera `id` covers (SSL-Vision layout).
+FieldRect cameraRegionFor(const FieldModel& field, uint32_t camera_id, unsigned num_cameras,
+                          const std::string& source);
+
+// Throws InputError(request.source, ...) for unusable input (no field
+// lines in the image, points outside the image, too few points); quality
+// problems are returned in `problem`.
+CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
+                                   const CalibrationRequest& request);
+
+}  // namespace dv

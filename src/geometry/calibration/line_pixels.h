@@ -1,0 +1,44 @@
+#pragma once
+// Field-line pixels (thesis §5.1.4): the ridge detector of eq. 5.9. A pixel
+// is a line pixel when it is brighter by more than a threshold than both
+// pixels at the half line width on either side, horizontally or vertically.
+// Wide bright areas (walls, robots' tops, goals) and single edges give no
+// response, which keeps clutter off the field low.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "core/units.h"
+
+namespace dv {
+
+struct LinePixelOptions {
+  // Distance to the side pixels: half the expected line width in pixels,
+  // rounded up, plus one so that the side pixels lie off the line.
+  int half_width_px = 3;
+  // Brightness step (0..255) a line must have over both sides.
+  int threshold = 18;
+  // Rejects coloured pixels (robot markers, ball): max-min channel spread
+  // above this is not white. Only used for colour input.
+  int max_colour_spread = 80;
+};
+
+// 8-bit single channel is a Bayer RGGB mosaic (as a `run` source); 3 channel
+// is BGR. Returns BGR. Throws InputError(source, ...) for other formats.
+cv::Mat toBgrImage(const cv::Mat& image, const std::string& source);
+// Reads an image file like a `run` source; throws InputError(path, ...) when
+// it cannot be read or is empty.
+cv::Mat loadCalibrationImage(const std::string& path);
+
+// The half line width for the ridge detector from the expected field scale
+// (mm per pixel) and the painted line thickness (mm).
+int halfLineWidthPx(double mm_per_px, double line_thickness_mm);
+
+// CV_8UC1 mask, 255 at line pixels. `bgr` is CV_8UC3.
+cv::Mat detectLinePixels(const cv::Mat& bgr, const LinePixelOptions& options);
+
+// Coordinates of the mask's set pixels, thinned to at most `max_count` by a
+// regular stride so that they stay spread over the image.
+std::vector<ImagePx> maskPixels(const cv::Mat& mask, size_t max_count);
+
+}  // namespace dv
