@@ -1,0 +1,817 @@
+#include "detection/detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "detection/blob_index.h"
+#include "detection/color_classes.h"
+#include "detection/pattern_fit.h"
+
+namespace dv {
+namespace {
+
+// Color classes, in the order of DetectorOptions' references.
+enum ColorClassId { kYellow = 0, kBlue, kGreen, kPink, kOrange, kField, kWhite, kNumClasses };
+
+constexpr int kMaxNeighbors = 10;       // side blob candidates per center
+constexpr int kMaxSlotCandidates = 3;   // blobs per predicted slot (tracking)
+constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs
+constexpr double kFourBlobPenalty = 0.5;  // rank factor for a missing side blob
+
+ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
+
+struct FrameBlob {
+  FieldMm at_ref;     // on the plane hypotheses are searched on
+  FieldMm at_team[2]; // at the yellow / blue robot height
+  FieldMm at_ball;    // at the ball center height
+  ColorVec color;
+  float score = 0;
+  bool valid = false;
+  int robot = -1;  // accepted robot using this blob
+};
+
+struct Hypothesis {
+  int blob[kPatternSlots];
+  int slot[kPatternSlots];
+  int n = 0;
+  PatternPose pose;  // fitted at the search height, then at the team height
+  double rank = 0;
+  double confidence = 0;
+  Team team = Team::Yellow;
+  int id = 0;
+  int track = -1;
+};
+
+struct RobotTrack {
+  Team team = Team::Yellow;  // committed identity
+  int id = 0;
+  Team pending_team = Team::Yellow;  // contrary evidence being counted
+  int pending_id = -1;
+  int pending_count = 0;
+  FieldMm pos[2];  // [1] newest
+  double orientation[2] = {0, 0};
+  double t[2] = {0, 0};
+  int history = 0;  // valid entries in pos/orientation/t (1 or 2)
+  bool confirmed = false;
+  // prediction for the current frame
+  FieldMm predicted;
+  double predicted_orientation = 0;
+  double uncertainty = 0;
+};
+
+struct BallTrack {
+  FieldMm pos[2];
+  double t[2] = {0, 0};
+  int history = 0;
+  int hits = 0;
+  bool confirmed = false;
+  FieldMm predicted;
+  double gate = 0;
+};
+
+struct BallCandidate {
+  int blob = -1;
+  FieldMm pos;
+  double confidence = 0;
+  int track = -1;
+};
+
+double sq(double v) { return v * v; }
+double dist(const FieldMm& a, const FieldMm& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+}  // namespace
+
+struct Detector::Impl {
+  CameraModel camera;
+  FieldModel field;
+  DetectorOptions opt;
+  Eigen::Vector3d cam_pos;
+  double ref_height = 140;
+  FieldRect ball_area;
+
+  ColorClass classes[kNumClasses];
+  ColorVec frame_color[kNumClasses];  // this frame's class colors
+  bool frame_seen[kNumClasses];       // class had samples in this frame
+  ColorMap color_map;                 // references -> this camera's colors
+
+  std::vector<FrameBlob> blobs;
+  BlobIndex index;
+  std::vector<Hypothesis> hyps;
+  std::vector<Hypothesis> robots;  // accepted
+  std::vector<RobotTrack> tracks;
+  std::vector<BallTrack> ball_tracks;
+  std::vector<BallCandidate> ball_cands;
+  std::vector<int> track_match;      // per accepted robot: track index or -1
+  std::vector<uint8_t> track_taken;  // per track
+  std::vector<ColorVec> samples;
+  std::vector<uint8_t> labels;
+  std::vector<int> sample_owner;
+  std::vector<float> score_buf;
+  double last_t = 0;
+  bool have_frame = false;
+
+  Impl(const CameraModel& cam, const FieldModel& f, const DetectorOptions& o)
+      : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
+    ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
+    ball_area = field.withBoundary();
+    const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
+                                         &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
+                                         &opt.ref_white};
+    for (int k = 0; k < kNumClasses; ++k) classes[k].reference = feature(*refs[k]);
+    blobs.reserve(1024);
+    hyps.reserve(1024);
+    robots.reserve(64);
+    tracks.reserve(64);
+    ball_tracks.reserve(16);
+    ball_cands.reserve(1024);
+    track_match.reserve(64);
+    track_taken.reserve(64);
+    samples.reserve(512);
+    labels.reserve(512);
+    sample_owner.reserve(512);
+    score_buf.reserve(512);
+    reset();
+  }
+
+  void reset() {
+    for (auto& c : classes) c.reset();
+    color_map.reset();
+    tracks.clear();
+    ball_tracks.clear();
+    have_frame = false;
+  }
+
+  double teamHeight(Team t) const {
+    return t == Team::Yellow ? opt.robot_height_yellow : opt.robot_height_blue;
+  }
+
+  // Moves a point along its camera ray from plane z0 to plane z1. This is
+  // exactly fieldToImage followed by imageToField (the ray does not depend
+  // on the lens distortion), without the distortion solve per blob.
+  bool alongRay(const FieldMm& p, double z0, double z1, FieldMm& out) const {
+    const double cz = cam_pos.z();
+    if (cz <= z0 + 1 || cz <= z1 + 1) return false;
+    const double s = (cz - z1) / (cz - z0);
+    out = {cam_pos.x() + s * (p.x - cam_pos.x()), cam_pos.y() + s * (p.y - cam_pos.y())};
+    return true;
+  }
+
+  // ---------------------------------------------------------------- frame
+  void prepare(const BlobList& list) {
+    blobs.clear();
+    auto& pts = index.points();
+    pts.clear();
+    const double z0 = list.plane_height;
+    for (const Blob& b : list.blobs) {
+      FrameBlob f;
+      f.valid = alongRay(b.position, z0, ref_height, f.at_ref) &&
+                alongRay(b.position, z0, opt.robot_height_yellow, f.at_team[0]) &&
+                alongRay(b.position, z0, opt.robot_height_blue, f.at_team[1]) &&
+                alongRay(b.position, z0, opt.ball_radius, f.at_ball) &&
+                std::isfinite(b.position.x) && std::isfinite(b.position.y);
+      f.color = colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]);
+      f.score = b.score;
+      blobs.push_back(f);
+      // Invalid blobs are put far away so that no query finds them.
+      pts.push_back(f.valid ? f.at_ref : FieldMm{1e12, 1e12});
+    }
+    index.build();
+  }
+
+  // ------------------------------------------- position based hypotheses
+  void findHypotheses() {
+    hyps.clear();
+    const int nb = static_cast<int>(blobs.size());
+    std::array<int, 64> nbr;
+    std::array<double, 64> ang;
+    std::array<double, 64> dev;
+    for (int c = 0; c < nb; ++c) {
+      if (!blobs[c].valid) continue;
+      const FieldMm cp = blobs[c].at_ref;
+      const auto& hits = index.within(cp, opt.side_search_radius);
+      int k = 0;
+      for (const auto& h : hits) {
+        const int i = static_cast<int>(h.first);
+        if (i == c || h.second < sq(kMinSideDistance)) continue;
+        if (k == static_cast<int>(nbr.size())) break;
+        nbr[k] = i;
+        dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
+        ++k;
+      }
+      if (k < 3) continue;
+      if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
+        for (int a = 0; a < kMaxNeighbors; ++a) {
+          int best = a;
+          for (int b = a + 1; b < k; ++b)
+            if (dev[b] < dev[best]) best = b;
+          std::swap(nbr[a], nbr[best]);
+          std::swap(dev[a], dev[best]);
+        }
+        k = kMaxNeighbors;
+      }
+      for (int a = 0; a < k; ++a) {
+        const FieldMm q = blobs[nbr[a]].at_ref;
+        ang[a] = std::atan2(q.y - cp.y, q.x - cp.x);
+      }
+      // Sort by angle (insertion sort, k <= 10).
+      for (int a = 1; a < k; ++a)
+        for (int b = a; b > 0 && ang[b] < ang[b - 1]; --b) {
+          std::swap(ang[b], ang[b - 1]);
+          std::swap(nbr[b], nbr[b - 1]);
+        }
+      Hypothesis best;
+      best.rank = -1;
+      // Side blobs in increasing angle map to slots in increasing angle, up
+      // to a cyclic shift (which blob is front-left).
+      auto consider = [&](const int* pick, int m, const int* slots_sorted) {
+        Hypothesis h;
+        h.n = m + 1;
+        h.blob[0] = c;
+        h.slot[0] = 0;
+        FieldMm pts[kPatternSlots];
+        pts[0] = cp;
+        for (int r = 0; r < m; ++r) {
+          for (int q = 0; q < m; ++q) {
+            h.blob[q + 1] = nbr[pick[q]];
+            h.slot[q + 1] = slots_sorted[(q + r) % m];
+            pts[q + 1] = blobs[nbr[pick[q]]].at_ref;
+          }
+          h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+          h.rank = h.pose.score * (m == 4 ? 1.0 : kFourBlobPenalty);
+          if (h.pose.score >= opt.min_robot_score && h.rank > best.rank) best = h;
+        }
+      };
+      int pick[4];
+      static constexpr int kAllSlots[4] = {1, 2, 3, 4};
+      for (pick[0] = 0; pick[0] < k; ++pick[0])
+        for (pick[1] = pick[0] + 1; pick[1] < k; ++pick[1])
+          for (pick[2] = pick[1] + 1; pick[2] < k; ++pick[2]) {
+            for (pick[3] = pick[2] + 1; pick[3] < k; ++pick[3]) consider(pick, 4, kAllSlots);
+            if (opt.min_side_blobs <= 3) {
+              for (int missing = 1; missing <= 4; ++missing) {
+                int slots[3], s = 0;
+                for (int q = 1; q <= 4; ++q)
+                  if (q != missing) slots[s++] = q;
+                consider(pick, 3, slots);
+              }
+            }
+          }
+      if (best.rank > 0) hyps.push_back(best);
+    }
+  }
+
+  bool overlapsAccepted(const PatternPose& pose, const Hypothesis* skip = nullptr) const {
+    for (const auto& r : robots) {
+      if (&r == skip) continue;
+      if (robotTopsOverlap(pose.position, pose.orientation, r.pose.position, r.pose.orientation))
+        return true;
+    }
+    return false;
+  }
+
+  void selectRobots() {
+    robots.clear();
+    std::sort(hyps.begin(), hyps.end(),
+              [](const Hypothesis& a, const Hypothesis& b) { return a.rank > b.rank; });
+    for (const auto& h : hyps) {
+      bool free = true;
+      for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
+      if (!free || overlapsAccepted(h.pose)) continue;
+      for (int i = 0; i < h.n; ++i) blobs[h.blob[i]].robot = static_cast<int>(robots.size());
+      robots.push_back(h);
+      robots.back().confidence = h.rank;
+    }
+  }
+
+  // ------------------------------------------------------ color classes
+  // Clutter (carpet noise, line crossings) can line up like a pattern. A
+  // robot's center must look like this frame's yellow or blue rather than
+  // like the field or a white line; the team colors come from clustering
+  // the centers first, so no fixed hue is involved.
+  void dropImplausibleCenters() {
+    const int nr = static_cast<int>(robots.size());
+    if (nr == 0) return;
+    samples.clear();
+    for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
+    labels.resize(samples.size());
+    const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
+    const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
+    const auto res = twoMeans(samples.data(), nr, prior, ext, 2, labels.data());
+    int kept = 0;
+    for (int i = 0; i < nr; ++i) {
+      const ColorVec& c = samples[i];
+      const float d_team = colorDistance(c, res.mean[labels[i]]);
+      const float d_bg = std::min(colorDistance(c, classes[kField].color),
+                                  colorDistance(c, classes[kWhite].color));
+      if (d_bg < d_team) {
+        for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
+        continue;
+      }
+      for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = kept;
+      robots[kept++] = robots[i];
+    }
+    robots.resize(kept);
+  }
+
+  void learnClass(int a, int b, const TwoMeansResult& r) {
+    const float fp = static_cast<float>(opt.retention_force);
+    const float fr = static_cast<float>(opt.reference_force);
+    const int cls[2] = {a, b};
+    for (int k = 0; k < 2; ++k) {
+      if (r.count[k] > 0) {
+        frame_seen[cls[k]] = true;
+        frame_color[cls[k]] = r.mean[k];
+        classes[cls[k]].update(r.mean[k], fp, fr);
+      }
+    }
+  }
+
+  void classifyRobots() {
+    for (int k = 0; k < kNumClasses; ++k) frame_color[k] = classes[k].color, frame_seen[k] = false;
+    const int nr = static_cast<int>(robots.size());
+    if (nr == 0) return;
+
+    // Teams: center blobs, yellow vs blue; green and pink are external.
+    samples.clear();
+    for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
+    labels.resize(samples.size());
+    {
+      const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
+      const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
+      const auto res = twoMeans(samples.data(), nr, prior, ext, 2, labels.data());
+      for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
+      learnClass(kYellow, kBlue, res);
+    }
+
+    // Side blobs of all robots: green vs pink; the team colors are external.
+    samples.clear();
+    for (const auto& r : robots)
+      for (int i = 1; i < r.n; ++i) samples.push_back(blobs[r.blob[i]].color);
+    labels.resize(samples.size());
+    {
+      const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
+      const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
+      const auto res =
+          twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+      // This frame's side colors seed the per-robot clustering.
+      const ColorVec green = res.count[0] > 0 ? res.mean[0] : classes[kGreen].color;
+      const ColorVec pink = res.count[1] > 0 ? res.mean[1] : classes[kPink].color;
+      learnClass(kGreen, kPink, res);
+      frame_color[kGreen] = green;
+      frame_color[kPink] = pink;
+    }
+
+    // Per robot: its own side blobs, against its own center color.
+    for (auto& r : robots) {
+      ColorVec local[4];
+      uint8_t lab[4];
+      const int m = r.n - 1;
+      for (int i = 0; i < m; ++i) local[i] = blobs[r.blob[i + 1]].color;
+      const ColorVec prior[2] = {frame_color[kGreen], frame_color[kPink]};
+      const ColorVec ext[1] = {blobs[r.blob[0]].color};
+      twoMeans(local, m, prior, ext, 1, lab);
+      std::array<MarkerColor, 4> colors;
+      colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
+      for (int i = 0; i < m; ++i)
+        colors[r.slot[i + 1] - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.id = patternId(colors);
+    }
+
+    // How this camera shows the pattern colors tells where its orange is.
+    ColorVec ref[4], seen[4];
+    int n = 0;
+    for (int k : {kYellow, kBlue, kGreen, kPink})
+      if (frame_seen[k]) ref[n] = classes[k].reference, seen[n] = frame_color[k], ++n;
+    color_map.fit(ref, seen, n);
+  }
+
+  // Refit at the team's height (pattern offsets are mm on the robot top).
+  void refit(Hypothesis& h) const {
+    FieldMm pts[kPatternSlots];
+    const int t = h.team == Team::Yellow ? 0 : 1;
+    for (int i = 0; i < h.n; ++i) pts[i] = blobs[h.blob[i]].at_team[t];
+    h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+  }
+
+  int nearestOf(const ColorVec& c, int a, int b) const {
+    return colorDistance(c, frame_color[a]) <= colorDistance(c, frame_color[b]) ? a : b;
+  }
+
+  // ----------------------------------------------------------- tracking
+  void predictTracks(double t) {
+    for (auto& tr : tracks) {
+      const double dt_last = t - tr.t[1];
+      tr.predicted = tr.pos[1];
+      tr.predicted_orientation = tr.orientation[1];
+      if (tr.history >= 2 && tr.t[1] > tr.t[0]) {
+        const double f = dt_last / (tr.t[1] - tr.t[0]);
+        tr.predicted = {tr.pos[1].x + f * (tr.pos[1].x - tr.pos[0].x),
+                        tr.pos[1].y + f * (tr.pos[1].y - tr.pos[0].y)};
+        tr.predicted_orientation =
+            wrapAngle(tr.orientation[1] + f * wrapAngle(tr.orientation[1] - tr.orientation[0]));
+      }
+      const double dt = std::min(std::max(dt_last, 0.0), opt.max_prediction_dt);
+      tr.uncertainty = std::max(opt.min_uncertainty, 0.5 * opt.max_robot_acceleration * dt * dt);
+      tr.confirmed = false;
+    }
+  }
+
+  void associateTracks() {
+    track_match.assign(robots.size(), -1);
+    track_taken.assign(tracks.size(), 0);
+    // Robots are in rank order: the best detections choose first.
+    for (size_t r = 0; r < robots.size(); ++r) {
+      int best = -1;
+      double best_d = opt.track_gate;
+      for (size_t k = 0; k < tracks.size(); ++k) {
+        if (track_taken[k]) continue;
+        const double d = dist(robots[r].pose.position, tracks[k].predicted);
+        if (d < best_d) best_d = d, best = static_cast<int>(k);
+      }
+      if (best >= 0) {
+        track_match[r] = best;
+        track_taken[best] = 1;
+      }
+    }
+  }
+
+  // A track that found no full pattern: look for two or more of its blobs
+  // around the predicted blob positions (§5.3.6), colors agreeing with its
+  // identity.
+  void recoverTrack(int k) {
+    const RobotTrack& tr = tracks[k];
+    const int team = tr.team == Team::Yellow ? 0 : 1;
+    const double h = teamHeight(tr.team);
+    const auto colors = patternColors(tr.id);
+    int cand[kPatternSlots][kMaxSlotCandidates];
+    int ncand[kPatternSlots] = {0, 0, 0, 0, 0};
+    double cdist[kPatternSlots][kMaxSlotCandidates];
+    for (int s = 0; s < kPatternSlots; ++s) {
+      const FieldMm e = slotPosition(tr.predicted, tr.predicted_orientation, s);
+      FieldMm e_ref;
+      if (!alongRay(e, h, ref_height, e_ref)) continue;
+      const auto& hits = index.within(e_ref, tr.uncertainty * 1.2 + 2);
+      for (const auto& hit : hits) {
+        const int i = static_cast<int>(hit.first);
+        const FrameBlob& b = blobs[i];
+        if (!b.valid || b.robot >= 0) continue;
+        const double d = dist(b.at_team[team], e);
+        if (d > tr.uncertainty) continue;
+        if (s == 0) {
+          if (nearestOf(b.color, kYellow, kBlue) != (team == 0 ? kYellow : kBlue)) continue;
+        } else {
+          const int want = colors[s - 1] == MarkerColor::Green ? kGreen : kPink;
+          if (nearestOf(b.color, kGreen, kPink) != want) continue;
+        }
+        // keep the nearest few
+        int pos = ncand[s];
+        if (pos == kMaxSlotCandidates) {
+          if (d >= cdist[s][pos - 1]) continue;
+          --pos;
+        } else {
+          ++ncand[s];
+        }
+        while (pos > 0 && cdist[s][pos - 1] > d) {
+          cand[s][pos] = cand[s][pos - 1];
+          cdist[s][pos] = cdist[s][pos - 1];
+          --pos;
+        }
+        cand[s][pos] = i;
+        cdist[s][pos] = d;
+      }
+    }
+    // Enumerate: each slot takes one of its candidates or none.
+    Hypothesis best;
+    best.rank = -1;
+    int choice[kPatternSlots];
+    for (int s = 0; s < kPatternSlots; ++s) choice[s] = -1;
+    auto evaluate = [&]() {
+      Hypothesis hyp;
+      FieldMm pts[kPatternSlots];
+      for (int s = 0; s < kPatternSlots; ++s) {
+        if (choice[s] < 0) continue;
+        const int b = cand[s][choice[s]];
+        for (int q = 0; q < hyp.n; ++q)
+          if (hyp.blob[q] == b) return;  // a blob fills one slot only
+        hyp.blob[hyp.n] = b;
+        hyp.slot[hyp.n] = s;
+        pts[hyp.n] = blobs[b].at_team[team];
+        ++hyp.n;
+      }
+      if (hyp.n < 2) return;
+      hyp.pose = fitPattern(pts, hyp.slot, hyp.n, opt.score_scale);
+      if (hyp.pose.score < opt.min_robot_score) return;
+      hyp.rank = hyp.pose.score * (0.5 + 0.1 * hyp.n);
+      if (hyp.rank > best.rank) best = hyp;
+    };
+    auto recurse = [&](auto&& self, int s) -> void {
+      if (s == kPatternSlots) return evaluate();
+      for (int c = -1; c < ncand[s]; ++c) {
+        choice[s] = c;
+        self(self, s + 1);
+      }
+      choice[s] = -1;
+    };
+    recurse(recurse, 0);
+    if (best.rank < 0 || overlapsAccepted(best.pose)) return;
+    best.team = tr.team;
+    best.id = tr.id;
+    best.confidence = best.pose.score * best.n / 5.0;
+    best.track = k;
+    for (int i = 0; i < best.n; ++i) blobs[best.blob[i]].robot = static_cast<int>(robots.size());
+    robots.push_back(best);
+    track_match.push_back(k);
+    track_taken[k] = 1;
+  }
+
+  void updateTrack(RobotTrack& tr, const Hypothesis& h, double t) {
+    if (tr.history >= 1) {
+      tr.pos[0] = tr.pos[1];
+      tr.orientation[0] = tr.orientation[1];
+      tr.t[0] = tr.t[1];
+    }
+    tr.pos[1] = h.pose.position;
+    tr.orientation[1] = h.pose.orientation;
+    tr.t[1] = t;
+    tr.history = std::min(tr.history + 1, 2);
+    tr.confirmed = true;
+  }
+
+  // Identity hysteresis: a tracked robot keeps team and id until several
+  // consecutive frames agree on the same different identity.
+  void applyIdentity(RobotTrack& tr, Hypothesis& h) {
+    if (h.team == tr.team && h.id == tr.id) {
+      tr.pending_count = 0;
+    } else {
+      if (h.team == tr.pending_team && h.id == tr.pending_id) {
+        ++tr.pending_count;
+      } else {
+        tr.pending_team = h.team;
+        tr.pending_id = h.id;
+        tr.pending_count = 1;
+      }
+      if (tr.pending_count >= opt.identity_switch_frames) {
+        tr.team = h.team;
+        tr.id = h.id;
+        tr.pending_count = 0;
+      }
+    }
+    if (h.team != tr.team) {
+      h.team = tr.team;
+      refit(h);
+    }
+    h.id = tr.id;
+  }
+
+  void track(double t) {
+    predictTracks(t);
+    associateTracks();
+    const size_t fresh = robots.size();
+    for (size_t k = 0; k < tracks.size(); ++k)
+      if (!track_taken[k]) recoverTrack(static_cast<int>(k));
+    for (size_t r = 0; r < robots.size(); ++r) {
+      const int k = track_match[r];
+      if (k < 0) continue;
+      if (r < fresh) applyIdentity(tracks[k], robots[r]);
+      updateTrack(tracks[k], robots[r], t);
+    }
+    // Drop tracks this frame did not confirm, then start new ones.
+    tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
+                                [](const RobotTrack& tr) { return !tr.confirmed; }),
+                 tracks.end());
+    for (size_t r = 0; r < fresh; ++r) {
+      if (track_match[r] >= 0) continue;
+      RobotTrack tr;
+      tr.team = robots[r].team;
+      tr.id = robots[r].id;
+      updateTrack(tr, robots[r], t);
+      tracks.push_back(tr);
+    }
+  }
+
+  // --------------------------------------------------------------- balls
+  void findBalls(double t, bool tracking, Detections& out) {
+    ball_cands.clear();
+    // Learned negatives: everything a ball candidate must be farther from
+    // than from the orange class.
+    const int negatives[] = {kField, kWhite, kPink, kGreen, kYellow, kBlue};
+    const ColorVec orange = classes[kOrange].color;
+    const ColorVec mapped_orange = color_map.apply(classes[kOrange].reference);
+    // Strength reference: the median score of this frame's robot blobs.
+    score_buf.clear();
+    for (const auto& r : robots)
+      for (int i = 0; i < r.n; ++i) score_buf.push_back(blobs[r.blob[i]].score);
+    double strength_ref = 0;
+    if (!score_buf.empty()) {
+      auto mid = score_buf.begin() + score_buf.size() / 2;
+      std::nth_element(score_buf.begin(), mid, score_buf.end());
+      strength_ref = *mid;
+    }
+    // Ball predictions.
+    for (auto& bt : ball_tracks) {
+      bt.predicted = bt.pos[1];
+      const double dt = std::max(0.0, t - bt.t[1]);
+      if (bt.history >= 2 && bt.t[1] > bt.t[0]) {
+        const double f = dt / (bt.t[1] - bt.t[0]);
+        bt.predicted = {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
+                        bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)};
+        bt.gate = 30 + 0.5 * opt.max_ball_speed * std::min(dt, 0.1);
+      } else {
+        bt.gate = 30 + opt.max_ball_speed * std::min(dt, 0.1);
+      }
+      bt.confirmed = false;
+    }
+    const double keep_out = minBallOutsideDistance(opt.ball_radius);
+    ColorVec field_sum;
+    int field_n = 0;
+    const double margin = 50;
+    for (int i = 0; i < static_cast<int>(blobs.size()); ++i) {
+      const FrameBlob& b = blobs[i];
+      if (!b.valid || b.robot >= 0) continue;
+      const FieldMm p = b.at_ball;
+      if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
+          p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
+        continue;
+      float d_or = colorDistance(b.color, orange);
+      if (color_map.valid()) d_or = std::min(d_or, colorDistance(b.color, mapped_orange));
+      float d_neg = std::numeric_limits<float>::max();
+      int nearest_neg = kField;
+      for (int k : negatives) {
+        const float d = colorDistance(b.color, frame_color[k]);
+        if (d < d_neg) d_neg = d, nearest_neg = k;
+      }
+      if (d_or >= d_neg) {
+        if (nearest_neg == kField) {
+          for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
+          ++field_n;
+        }
+        continue;
+      }
+      // Rules: at least 80 % of the ball is outside every robot's top.
+      bool inside = false;
+      for (const auto& r : robots) {
+        if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
+        if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) {
+          inside = true;
+          break;
+        }
+      }
+      if (inside) continue;
+      const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
+      const double color_conf = std::min(1.0, margin_ratio / 0.3);
+      const double strength =
+          strength_ref > 0 ? std::min(1.0, b.score / (0.4 * strength_ref)) : 1.0;
+      BallCandidate c;
+      c.blob = i;
+      c.pos = p;
+      double temporal = 1.0;
+      if (tracking && have_frame) {
+        temporal = 0.85;
+        double best = std::numeric_limits<double>::max();
+        for (size_t k = 0; k < ball_tracks.size(); ++k) {
+          const double d = dist(p, ball_tracks[k].predicted);
+          if (d < ball_tracks[k].gate && d < best) best = d, c.track = static_cast<int>(k);
+        }
+        if (c.track >= 0) temporal = 1.0;
+      }
+      c.confidence = color_conf * strength * temporal;
+      if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
+    }
+    std::sort(ball_cands.begin(), ball_cands.end(),
+              [](const BallCandidate& a, const BallCandidate& b) { return a.confidence > b.confidence; });
+    // One ball per place: weaker candidates within a ball diameter go.
+    int kept = 0;
+    for (size_t i = 0; i < ball_cands.size(); ++i) {
+      bool dup = false;
+      for (int j = 0; j < kept && !dup; ++j)
+        dup = dist(ball_cands[i].pos, ball_cands[j].pos) < 4 * opt.ball_radius;
+      if (!dup && kept < opt.max_balls) ball_cands[kept++] = ball_cands[i];
+    }
+    ball_cands.resize(kept);
+
+    // Learn orange from a convincing ball, the field from the clutter.
+    const float fp = static_cast<float>(opt.retention_force);
+    const float fr = static_cast<float>(opt.reference_force);
+    if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5)
+      classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
+    if (field_n > 0) {
+      for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
+      classes[kField].update(field_sum, fp, fr);
+    }
+
+    if (tracking) {
+      for (auto& c : ball_cands) {
+        if (c.track >= 0 && !ball_tracks[c.track].confirmed) {
+          BallTrack& bt = ball_tracks[c.track];
+          bt.pos[0] = bt.pos[1];
+          bt.t[0] = bt.t[1];
+          bt.pos[1] = c.pos;
+          bt.t[1] = t;
+          bt.history = 2;
+          ++bt.hits;
+          bt.confirmed = true;
+        } else {
+          c.track = -1;
+        }
+      }
+      // Unconfirmed ball tracks survive a short gap (flicker, occlusion).
+      ball_tracks.erase(std::remove_if(ball_tracks.begin(), ball_tracks.end(),
+                                       [&](const BallTrack& bt) {
+                                         return !bt.confirmed && t - bt.t[1] > 0.1;
+                                       }),
+                        ball_tracks.end());
+      for (const auto& c : ball_cands) {
+        if (c.track >= 0 || ball_tracks.size() >= 16) continue;
+        BallTrack bt;
+        bt.pos[1] = c.pos;
+        bt.t[1] = t;
+        bt.history = 1;
+        bt.hits = 1;
+        bt.confirmed = true;
+        ball_tracks.push_back(bt);
+      }
+    }
+
+    const double plane = plane_height;
+    for (const auto& c : ball_cands) {
+      BallDetection d;
+      d.confidence = static_cast<float>(std::clamp(c.confidence, 0.0, 1.0));
+      const FieldMm at_plane = raw_positions[c.blob];
+      const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+      std::optional<FieldPoint> fp3;
+      if (px) fp3 = camera.imageToField(*px, opt.ball_radius);
+      d.position = fp3 ? FieldPoint{fp3->x, fp3->y, opt.ball_radius}
+                       : FieldPoint{c.pos.x, c.pos.y, opt.ball_radius};
+      if (px) d.pixel = *px;
+      out.balls.push_back(d);
+    }
+  }
+
+  std::vector<FieldMm> raw_positions;
+  double plane_height = 150;
+
+  void process(const BlobList& list, double t, Detections& out) {
+    out.balls.clear();
+    out.robots.clear();
+    // Time going backwards or a long gap: the frames are unrelated.
+    if (have_frame && (t <= last_t || t - last_t > 0.5)) {
+      tracks.clear();
+      ball_tracks.clear();
+    }
+    plane_height = list.plane_height;
+    raw_positions.clear();
+    for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
+    prepare(list);
+    findHypotheses();
+    selectRobots();
+    dropImplausibleCenters();
+    classifyRobots();
+    for (auto& r : robots) {
+      if (opt.robot_height_yellow != opt.robot_height_blue) refit(r);
+    }
+    if (opt.tracking) {
+      if (!have_frame) tracks.clear();
+      track(t);
+    }
+    findBalls(t, opt.tracking, out);
+
+    for (const auto& r : robots) {
+      RobotDetection d;
+      d.team = r.team;
+      d.id = r.id;
+      d.height = teamHeight(r.team);
+      d.orientation = r.pose.orientation;
+      d.confidence = static_cast<float>(std::clamp(r.confidence, 0.0, 1.0));
+      const auto px = camera.fieldToImage({r.pose.position.x, r.pose.position.y, d.height});
+      d.position = r.pose.position;
+      if (px) {
+        d.pixel = *px;
+        if (const auto back = camera.imageToField(*px, d.height)) d.position = back->xy();
+      }
+      out.robots.push_back(d);
+    }
+    // std::sort: stable_sort may allocate a buffer.
+    std::sort(out.robots.begin(), out.robots.end(),
+              [](const RobotDetection& a, const RobotDetection& b) {
+                if (a.confidence != b.confidence) return a.confidence > b.confidence;
+                return a.position.x < b.position.x;
+              });
+    last_t = t;
+    have_frame = true;
+  }
+};
+
+Detector::Detector(const CameraModel& camera, const FieldModel& field, const DetectorOptions& opt)
+    : opt_(opt), impl_(std::make_unique<Impl>(camera, field, opt)) {}
+Detector::~Detector() = default;
+Detector::Detector(Detector&&) noexcept = default;
+Detector& Detector::operator=(Detector&&) noexcept = default;
+
+void Detector::reset() { impl_->reset(); }
+
+void Detector::process(const BlobList& blobs, double t_capture, Detections& out) {
+  impl_->process(blobs, t_capture, out);
+}
+
+}  // namespace dv

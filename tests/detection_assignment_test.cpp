@@ -1,0 +1,230 @@
+// Blob assignment on hand-built blob lists: robots from the exact pattern
+// geometry under different color looks, clutter, close robots, balls.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "detection/detector.h"
+#include "detection_test_scene.h"
+#include "geometry/field_model.h"
+
+namespace dv {
+namespace {
+
+using test::SceneBuilder;
+using test::TrueRobot;
+
+// Division B half field seen from the top-down camera.
+constexpr double kX0 = 200, kX1 = 4300, kY0 = -2800, kY1 = 2800;
+
+struct Match {
+  int found = 0, id_ok = 0, extra = 0;
+  double max_pos = 0, max_ang = 0;
+};
+
+Match matchRobots(const std::vector<TrueRobot>& truth, const Detections& d) {
+  Match m;
+  std::vector<bool> used(d.robots.size(), false);
+  for (const auto& t : truth) {
+    int best = -1;
+    double best_d = 60;
+    for (size_t i = 0; i < d.robots.size(); ++i) {
+      const double e = std::hypot(d.robots[i].position.x - t.position.x,
+                                  d.robots[i].position.y - t.position.y);
+      if (!used[i] && e < best_d) best_d = e, best = static_cast<int>(i);
+    }
+    if (best < 0) continue;
+    used[best] = true;
+    ++m.found;
+    const auto& r = d.robots[best];
+    if (r.team == t.team && r.id == t.id) ++m.id_ok;
+    m.max_pos = std::max(m.max_pos, best_d);
+    m.max_ang = std::max(m.max_ang, test::angleError(r.orientation, t.orientation));
+  }
+  for (bool u : used) m.extra += u ? 0 : 1;
+  return m;
+}
+
+class FullFieldLooks : public ::testing::TestWithParam<int> {};
+
+TEST_P(FullFieldLooks, FindsEveryRobotWithIdAndTheBallFirst) {
+  const test::Look looks[] = {test::lookNormal(), test::lookBlueWhiteBalance(), test::lookDark(),
+                              test::lookDesaturated()};
+  const CameraModel cam(test::topDownCamera());
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    SceneBuilder s(cam, seed * 7 + GetParam(), looks[GetParam()]);
+    for (const auto& r : s.randomRobots(11, 11, kX0, kX1, kY0, kY1)) s.addRobot(r);
+    const FieldMm ball{1111 + 100 * seed, -333};
+    s.addBall(ball);
+    s.addClutter(160, 40, kX0, kX1, kY0, kY1);
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 1.0, out);
+    const Match m = matchRobots(s.robots, out);
+    EXPECT_EQ(m.found, 22) << "seed " << seed;
+    EXPECT_EQ(m.id_ok, 22) << "seed " << seed;
+    EXPECT_EQ(m.extra, 0) << "seed " << seed;
+    EXPECT_LT(m.max_pos, 4.0) << "seed " << seed;
+    EXPECT_LT(m.max_ang * 180 / kPi, 4.0) << "seed " << seed;
+    ASSERT_EQ(out.balls.size(), 1u) << "seed " << seed;
+    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5);
+    EXPECT_NEAR(out.balls[0].position.y, ball.y, 5);
+    EXPECT_DOUBLE_EQ(out.balls[0].position.z, 21.5);
+    for (size_t i = 1; i < out.robots.size(); ++i)
+      EXPECT_GE(out.robots[i - 1].confidence, out.robots[i].confidence);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Looks, FullFieldLooks, ::testing::Values(0, 1, 2, 3));
+
+TEST(DetectionAssignment, RobotsTouchingAreSeparated) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 3);
+  // Fronts facing each other, side by side, back to back: 180 mm apart.
+  s.addRobot({Team::Yellow, 3, {1500, 0}, 0});
+  s.addRobot({Team::Blue, 5, {1680, 0}, kPi});
+  s.addRobot({Team::Yellow, 7, {1500, 180}, kPi / 2});
+  s.addRobot({Team::Blue, 0, {1680, 180}, 1.0});
+  s.addRobot({Team::Yellow, 12, {1500, -180}, -2.5});
+  s.addRobot({Team::Blue, 9, {1680, -180}, 2.0});
+  s.addRobot({Team::Blue, 8, {1860, -180}, -0.3});
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  const Match m = matchRobots(s.robots, out);
+  EXPECT_EQ(m.found, 7);
+  EXPECT_EQ(m.id_ok, 7);
+  EXPECT_EQ(m.extra, 0);
+}
+
+TEST(DetectionAssignment, OnlyOneTeamUnderBlueWhiteBalanceStaysYellow) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 4, test::lookBlueWhiteBalance());
+  for (auto r : s.randomRobots(6, 0, kX0, kX1, kY0, kY1)) s.addRobot(r);
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  const Match m = matchRobots(s.robots, out);
+  EXPECT_EQ(m.found, 6);
+  EXPECT_EQ(m.id_ok, 6);
+}
+
+TEST(DetectionAssignment, TiltedCameraAndTeamHeights) {
+  // A side view: positions must come out at each team's height.
+  const CameraModel cam(test::lookAtCamera({-1500, -2500, 3500}, {2000, 0, 0}, 900));
+  DetectorOptions opt;
+  opt.robot_height_yellow = 140;
+  opt.robot_height_blue = 120;
+  SceneBuilder s(cam, 5, test::lookNormal(), 0.5);
+  TrueRobot a{Team::Yellow, 4, {1500, -500}, 0.3};
+  TrueRobot b{Team::Blue, 11, {2600, 700}, -1.2};
+  b.height = 120;
+  s.addRobot(a);
+  s.addRobot(b);
+  s.addBall({2000, 100});
+  Detector det(cam, FieldModel::divisionB(), opt);
+  Detections out;
+  det.process(s.list, 0, out);
+  const Match m = matchRobots(s.robots, out);
+  ASSERT_EQ(m.found, 2);
+  EXPECT_EQ(m.id_ok, 2);
+  EXPECT_LT(m.max_pos, 2.0);
+  for (const auto& r : out.robots)
+    EXPECT_DOUBLE_EQ(r.height, r.team == Team::Yellow ? 140.0 : 120.0);
+  ASSERT_GE(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 2000, 3);
+  EXPECT_NEAR(out.balls[0].position.y, 100, 3);
+  // The reported pixel is where the robot center appears in the image.
+  const auto px = cam.fieldToImage({a.position.x, a.position.y, 140});
+  ASSERT_TRUE(px);
+  for (const auto& r : out.robots)
+    if (r.team == Team::Yellow) EXPECT_NEAR(r.pixel.u, px->u, 1.0);
+}
+
+TEST(DetectionBalls, PinkBlobApartIsNotABall) {
+  const CameraModel cam(test::topDownCamera());
+  for (int with_ball = 0; with_ball < 2; ++with_ball) {
+    SceneBuilder s(cam, 11 + with_ball);
+    for (auto r : s.randomRobots(3, 3, kX0, 2000, kY0, kY1)) s.addRobot(r);
+    s.addBlob({3500, 1500, 140}, SceneBuilder::kPink, 0.9f);  // a lost side blob
+    s.addBlob({3800, -1500, 140}, SceneBuilder::kPink, 0.9f);
+    if (with_ball) s.addBall({3000, 0}, 0.6f);
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out);
+    ASSERT_EQ(out.balls.size(), static_cast<size_t>(with_ball));
+    if (with_ball) EXPECT_NEAR(out.balls[0].position.x, 3000, 5);
+  }
+}
+
+TEST(DetectionBalls, LineCrossingsAndCarpetAreNoBalls) {
+  const CameraModel cam(test::topDownCamera());
+  for (const auto& look : {test::lookNormal(), test::lookBlueWhiteBalance(), test::lookDark()}) {
+    SceneBuilder s(cam, 21, look);
+    for (auto r : s.randomRobots(4, 4, kX0, kX1, kY0, kY1)) s.addRobot(r);
+    s.addClutter(150, 60, kX0, kX1, kY0, kY1);
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out);
+    EXPECT_TRUE(out.balls.empty()) << out.balls.size() << " ghost balls";
+  }
+}
+
+TEST(DetectionBalls, BallTooCloseToARobotIsRejectedButDribbledBallIsKept) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 5);
+  s.addRobot({Team::Yellow, 2, {1000, 0}, 0});
+  s.addRobot({Team::Blue, 6, {2000, 0}, 0});
+  s.addBall({1000 + 40, 40});            // on top of the yellow robot: impossible
+  s.addBall({2000 + 55 + 22, 0});        // at the blue robot's flat front
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  ASSERT_EQ(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 2077, 5);
+  EXPECT_EQ(out.robots.size(), 2u);
+}
+
+TEST(DetectionBalls, RealBallRanksFirstAmongOrangeishBlobs) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 8);
+  for (auto r : s.randomRobots(4, 4, kX0, kX1, kY0, kY1)) s.addRobot(r);
+  s.addBall({2500, 900});
+  // A reddish-brown spot on the carpet: orange-ish, but weak and dull.
+  s.addBlob({1300, -2000, 0}, ColorRef{120, 90, 60}, 0.3f);
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  ASSERT_GE(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 2500, 5);
+  EXPECT_NEAR(out.balls[0].position.y, 900, 5);
+  for (size_t i = 1; i < out.balls.size(); ++i)
+    EXPECT_LT(out.balls[i].confidence, out.balls[0].confidence);
+}
+
+TEST(DetectionAssignment, EmptyAndDegenerateInputDoNotCrash) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  BlobList empty;
+  det.process(empty, 0, out);
+  EXPECT_TRUE(out.robots.empty());
+  EXPECT_TRUE(out.balls.empty());
+  BlobList bad;
+  Blob b;
+  b.position = {std::nan(""), 0};
+  bad.blobs.push_back(b);
+  b.position = {1e9, -1e9};
+  bad.blobs.push_back(b);
+  bad.blobs.push_back(b);  // two blobs at the same place
+  det.process(bad, 1, out);
+  EXPECT_TRUE(out.robots.empty());
+  BlobList above;  // plane above the camera: nothing can be projected
+  above.plane_height = 1e6;
+  above.blobs.push_back(Blob{});
+  det.process(above, 2, out);
+  EXPECT_TRUE(out.robots.empty());
+}
+
+}  // namespace
+}  // namespace dv
