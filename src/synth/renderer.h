@@ -18,6 +18,9 @@ struct RenderedFrame {
   // CV_8UC1 Bayer RGGB (R at even row / even column) when spec.bayer, else
   // CV_8UC3 BGR.
   cv::Mat image;
+  // CV_8UC3 BGR of the same exposure, filled only when spec.bayer and
+  // spec.write_png are both set (image is then the Bayer mosaic).
+  cv::Mat rgb;
   // What the camera sees, by construction: camera_id, frame_number (from 0),
   // t_capture = t_sent = frame / fps, robots and ball whose projected center
   // lies inside the image. Robots: x/y of the center blob, pixel_x/y its

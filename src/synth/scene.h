@@ -25,11 +25,12 @@ struct SceneCamera {
 };
 
 // A camera at `position` looking at `look_at` (field mm). The principal point
-// is the image center plus `principal_offset` (px). The image is upright:
-// field +z appears up, or field +y for cameras looking (nearly) straight down.
+// is the image center ((w-1)/2, (h-1)/2) plus `principal_offset` (px).
+// `up` is the field direction that appears up in the image; the zero vector
+// means field +z, or field +y for cameras looking (nearly) straight down.
 SceneCamera makeCamera(uint32_t id, const FieldPoint& position, const FieldPoint& look_at,
                        double focal_length, double distortion, ImagePx principal_offset,
-                       uint32_t width, uint32_t height);
+                       uint32_t width, uint32_t height, const FieldPoint& up = {});
 
 struct SceneRobot {
   Team team = Team::Yellow;
@@ -134,13 +135,29 @@ std::string presetDirectory();
 SceneSpec defaultScene();
 
 // Places `yellow` + `blue` robots with random distinct ids, at least
-// `min_distance` mm apart (and from the ball), on the field inside camera
+// `min_distance` mm apart (and from the ball and the scene's own robots, whose
+// ids they do not reuse), on the field inside camera
 // `camera_index`'s view (center blob at least `margin_px` inside the image),
-// with random orientations. Deterministic for `seed`. Throws
+// with random orientations. Returns only the new robots. Deterministic for
+// `seed`. Throws
 // std::invalid_argument when the robots do not fit.
 std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_index,
                                           int yellow, int blue, uint64_t seed,
                                           double min_distance = 200, double margin_px = 40);
+
+// Gives every robot a random velocity (speed up to max_speed mm/s, any
+// direction) and angular velocity (up to max_angular_speed rad/s), and the
+// ball one up to ball_max_speed, such that over `duration` seconds no two
+// robots come closer than 200 mm, the ball stays clear of the robots and all
+// stay inside the walls. Where no such motion is found, the object stands.
+// Deterministic for `seed`.
+void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_speed,
+                        double ball_max_speed, double duration, uint64_t seed);
+
+// Scales every camera's image by `factor` (focal length and principal point
+// with it, pixel centers at integer coordinates), e.g. to render a preset
+// small in a test. The view stays the same.
+void scaleImages(SceneSpec& scene, double factor);
 
 // Position and orientation of a robot / the ball at time t (constant velocity).
 FieldMm robotPositionAt(const SceneRobot& r, double t);

@@ -1,0 +1,33 @@
+#pragma once
+// What the camera does to the light that reaches it: uneven illumination
+// across the image, exposure, white balance and flicker gains, lens blur,
+// read and shot noise, clipping to 8 bits and the Bayer RGGB mosaic.
+#include <cstdint>
+#include <opencv2/core.hpp>
+
+#include "synth/scene.h"
+
+namespace dv {
+
+// Brightness multiplier of the uneven illumination for every pixel (CV_32F):
+// a smooth exponential ramp, brightest / darkest = ratio across the image.
+cv::Mat unevenLightMap(int width, int height, double ratio, double direction);
+
+// Mean of 1 + a sin(2 pi f s) over the exposure [t - T/2, t + T/2].
+double flickerGain(const SceneLighting& l, double t);
+
+struct SensorSettings {
+  double gain[3] = {1, 1, 1};  // per channel, B, G, R (exposure x white balance x flicker)
+  double lens_blur_px = 0;
+  double noise_sigma = 0;      // read noise, 8-bit levels
+  double shot_noise = 0;       // variance per level of signal
+  bool bayer = true;
+  uint64_t noise_seed = 1;
+};
+
+// radiance: CV_32FC3 (B, G, R, 0..255 scale), modified in place (gains,
+// blur). uneven: CV_32F map or empty. Returns CV_8UC1 RGGB (R at even row and
+// even column) or CV_8UC3 BGR.
+cv::Mat applySensor(cv::Mat& radiance, const cv::Mat& uneven, const SensorSettings& s);
+
+}  // namespace dv
