@@ -90,5 +90,63 @@ TEST(CalibrationFourPoint, StrongBarrelOffCenterWithinTwoMillimetres) {
   EXPECT_LE(gridError(s, out.calibration), 2.0);
 }
 
+// Line crossings of the field that the true camera sees well inside the image.
+std::vector<PointCorrespondence> visibleCrossings(const CameraCalibration& truth, const FieldModel& f,
+                                                  double noise_px, unsigned seed) {
+  const double l = f.field_length / 2.0, w = f.field_width / 2.0;
+  const double xp = l - f.penalty_area_depth, yp = f.penalty_area_width / 2.0;
+  const CameraModel cam(truth);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> n(-noise_px, noise_px);
+  std::vector<PointCorrespondence> out;
+  for (double x : {-l, -xp, 0.0, xp, l})
+    for (double y : {-w, -yp, 0.0, yp, w}) {
+      const auto px = cam.fieldToImage({x, y, 0});
+      if (!px || px->u < 50 || px->v < 50 || px->u > truth.image_width - 50 || px->v > truth.image_height - 50)
+        continue;
+      out.push_back({{x, y, 0}, {px->u + n(rng), px->v + n(rng)}});
+    }
+  return out;
+}
+
+Scenario sideView() {
+  const FieldModel f = FieldModel::divisionB();
+  // At the bottom touch line, 400 mm outside it, 3.5 m up, tilted 45 degrees
+  // towards the field.
+  return {"side view from the field edge", f, 2, 0,
+          makeCamera(0, 2448, 2048, 1700, -0.05, 1223.5, 1023.5, {-2250, -3400, 3500}, 0, kPi / 4), false};
+}
+
+TEST(CalibrationFourPoint, SideViewWithinTwoMillimetres) {
+  const Scenario s = sideView();
+  const cv::Mat img = renderFieldImage(s.truth, s.field);
+  CalibrationRequest req;
+  req.camera_id = s.camera_id;
+  req.num_cameras = s.num_cameras;
+  req.points = visibleCrossings(s.truth, s.field, 0, 3);
+  ASSERT_GE(req.points.size(), 4u);
+  const auto out = calibrateCamera(img, s.field, req);
+  ASSERT_FALSE(out.problem) << *out.problem;
+  EXPECT_LE(gridError(s, out.calibration), 2.0);
+}
+
+// With clicks off by up to 2 px the line refinement must still land within
+// the bar; the clicks alone would not.
+TEST(CalibrationFourPoint, NoisyClicksAreCorrectedByTheLines) {
+  const Scenario s = topDownPincushion();
+  testing::SceneOptions so;
+  so.robots = 8;
+  const cv::Mat img = renderFieldImage(s.truth, s.field, so);
+  CalibrationRequest req;
+  req.camera_id = s.camera_id;
+  req.num_cameras = s.num_cameras;
+  req.camera_height_mm = 4000;
+  req.points = cornerClicks(s.truth, *s.field.cameraRegion(s.camera_id, s.num_cameras), 2.0, 7);
+  const auto out = calibrateCamera(img, s.field, req);
+  ASSERT_FALSE(out.problem) << *out.problem;
+  EXPECT_TRUE(out.refinement_accepted);
+  EXPECT_LE(gridError(s, out.calibration), 2.0);
+}
+
 }  // namespace
 }  // namespace dv
