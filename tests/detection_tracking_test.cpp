@@ -1,0 +1,202 @@
+// Tracking (§5.3.6 and beyond): recovery of robots seen with few blobs,
+// history that is forgotten when it must be, identity hysteresis, balls.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "detection/detector.h"
+#include "detection_test_scene.h"
+#include "geometry/field_model.h"
+
+namespace dv {
+namespace {
+
+using test::SceneBuilder;
+using test::TrueRobot;
+
+constexpr double kDt = 1.0 / 60;
+
+TrueRobot movingRobot(int frame, std::array<bool, 5> present = {true, true, true, true, true}) {
+  TrueRobot r{Team::Blue, 6, {1000 + 2000 * kDt * frame, 300 - 1000 * kDt * frame}, 0.4 + 0.5 * kDt * frame};
+  r.present = present;
+  return r;
+}
+
+const RobotDetection* findNear(const Detections& d, FieldMm p, double tol = 15) {
+  for (const auto& r : d.robots)
+    if (std::hypot(r.position.x - p.x, r.position.y - p.y) < tol) return &r;
+  return nullptr;
+}
+
+BlobList frameWith(const CameraModel& cam, unsigned seed, std::initializer_list<TrueRobot> robots) {
+  SceneBuilder s(cam, seed);
+  for (const auto& r : robots) s.addRobot(r);
+  return s.list;
+}
+
+TEST(DetectionTracking, RecoversARobotSeenWithTwoBlobs) {
+  const CameraModel cam(test::topDownCamera());
+  for (bool tracking : {true, false}) {
+    DetectorOptions opt;
+    opt.tracking = tracking;
+    Detector det(cam, FieldModel::divisionB(), opt);
+    Detections out;
+    for (int f = 0; f < 3; ++f) det.process(frameWith(cam, f, {movingRobot(f)}), f * kDt, out);
+    // Center and the front-left blob only.
+    const TrueRobot partial = movingRobot(3, {true, true, false, false, false});
+    det.process(frameWith(cam, 3, {partial}), 3 * kDt, out);
+    const RobotDetection* r = findNear(out, partial.position);
+    if (!tracking) {
+      EXPECT_EQ(r, nullptr) << "a single frame cannot know a robot from two blobs";
+      continue;
+    }
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->team, Team::Blue);
+    EXPECT_EQ(r->id, 6);
+    EXPECT_NEAR(r->position.x, partial.position.x, 5);
+    EXPECT_NEAR(r->position.y, partial.position.y, 5);
+    EXPECT_LT(test::angleError(r->orientation, partial.orientation), 0.1);
+    EXPECT_LT(r->confidence, 0.6) << "a partial robot is less certain";
+    // Two side blobs without the center work as well.
+    const TrueRobot sides = movingRobot(4, {false, false, true, false, true});
+    det.process(frameWith(cam, 4, {sides}), 4 * kDt, out);
+    EXPECT_NE(findNear(out, sides.position), nullptr);
+  }
+}
+
+TEST(DetectionTracking, ResetForgetsHistory) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 3; ++f) det.process(frameWith(cam, f, {movingRobot(f)}), f * kDt, out);
+  det.reset();
+  const TrueRobot partial = movingRobot(3, {true, true, false, false, true});
+  det.process(frameWith(cam, 3, {partial}), 3 * kDt, out);
+  EXPECT_TRUE(out.robots.empty());
+}
+
+TEST(DetectionTracking, UnrelatedFrameTimesCarryNoHistory) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 3; ++f) det.process(frameWith(cam, f, {movingRobot(f)}), 10 + f * kDt, out);
+  const TrueRobot partial = movingRobot(3, {true, true, false, false, true});
+  det.process(frameWith(cam, 3, {partial}), 5.0, out);  // time went backwards
+  EXPECT_TRUE(out.robots.empty());
+}
+
+TEST(DetectionTracking, UnconfirmedTracksAreDropped) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 3; ++f) det.process(frameWith(cam, f, {movingRobot(f)}), f * kDt, out);
+  det.process(BlobList{}, 3 * kDt, out);  // the robot is gone for a frame
+  const TrueRobot partial = movingRobot(4, {true, true, false, false, false});
+  det.process(frameWith(cam, 4, {partial}), 4 * kDt, out);
+  EXPECT_EQ(findNear(out, partial.position), nullptr);
+}
+
+TEST(DetectionTracking, IdentityHysteresisKeepsIdThroughAWrongColor) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  TrueRobot truth{Team::Yellow, 3, {2000, 500}, 1.0};
+  TrueRobot other{Team::Blue, 9, {3000, -500}, -1.0};  // keeps both color classes present
+  auto colors = patternColors(3);
+  colors[kBackLeft] = colors[kBackLeft] == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
+  TrueRobot wrong = truth;
+  wrong.id = patternId(colors);
+  ASSERT_NE(wrong.id, 3);
+  int f = 0;
+  for (; f < 3; ++f) det.process(frameWith(cam, f, {truth, other}), f * kDt, out);
+  det.process(frameWith(cam, f, {wrong, other}), f * kDt, out);
+  ++f;
+  const RobotDetection* r = findNear(out, truth.position);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->id, 3) << "one frame with a wrong color must not change the id";
+  EXPECT_EQ(r->team, Team::Yellow);
+  // The same new evidence over several frames wins.
+  int reported = -1;
+  for (int k = 0; k < 3; ++k, ++f) {
+    det.process(frameWith(cam, f, {wrong, other}), f * kDt, out);
+    r = findNear(out, truth.position);
+    ASSERT_NE(r, nullptr);
+    reported = r->id;
+  }
+  EXPECT_EQ(reported, wrong.id);
+  // A single image has no history: it reports what it sees.
+  Detector single(cam, FieldModel::divisionB(), DetectorOptions{});
+  single.process(frameWith(cam, 0, {wrong, other}), 0, out);
+  r = findNear(out, truth.position);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->id, wrong.id);
+}
+
+TEST(DetectionTracking, FastRobotsWithFlickeringBlobsKeepRecall) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  std::mt19937 rng(5);
+  std::bernoulli_distribution lost(0.25);
+  std::vector<TrueRobot> base;
+  {
+    SceneBuilder s(cam, 99);
+    base = s.randomRobots(6, 6, 300, 2500, -2200, 1800, 300);
+  }
+  int expected = 0, found = 0, wrong_id = 0;
+  for (int f = 0; f < 40; ++f) {
+    SceneBuilder s(cam, 1000 + f);
+    std::vector<TrueRobot> now;
+    for (size_t i = 0; i < base.size(); ++i) {
+      TrueRobot r = base[i];
+      // 3 m/s side by side (no collisions), turning at different rates.
+      r.position = {r.position.x + 3000 * std::cos(0.3) * f * kDt,
+                    r.position.y + 3000 * std::sin(0.3) * f * kDt};
+      r.orientation += (0.5 + 0.3 * static_cast<double>(i)) * f * kDt;
+      if (f > 2) {  // after a clean start, blobs flicker away
+        int visible = 5;
+        for (auto& p : r.present)
+          if (lost(rng) && visible > 2) p = false, --visible;
+      }
+      s.addRobot(r);
+      now.push_back(r);
+    }
+    s.addClutter(60, 20, 200, 4300, -2800, 2800);
+    det.process(s.list, f * kDt, out);
+    for (const auto& r : now) {
+      ++expected;
+      if (const auto* d = findNear(out, r.position, 20)) {
+        ++found;
+        wrong_id += (d->id != r.id || d->team != r.team);
+      }
+    }
+  }
+  const double recall = static_cast<double>(found) / expected;
+  EXPECT_GE(recall, 0.98) << found << " of " << expected;
+  EXPECT_EQ(wrong_id, 0);
+}
+
+TEST(DetectionTracking, TrackedBallRanksAboveANewLookalike) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 6; ++f) {
+    SceneBuilder s(cam, 300 + f);
+    s.addRobot({Team::Yellow, 1, {1000, 1000}, 0});
+    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
+    const FieldMm ball{1500 + 6500 * kDt * f, 0};
+    s.addBall(ball);
+    if (f == 5) s.addBall({2500, 1800});  // equally orange, appears from nowhere
+    det.process(s.list, f * kDt, out);
+    ASSERT_GE(out.balls.size(), 1u);
+    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+    if (f == 5) {
+      ASSERT_EQ(out.balls.size(), 2u);
+      EXPECT_LT(out.balls[1].confidence, out.balls[0].confidence);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dv
