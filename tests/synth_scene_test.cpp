@@ -1,0 +1,239 @@
+// Scene files and presets: every shipped preset loads and renders; bad scene
+// files and unknown presets give one InputError naming the file, the place
+// and what is wrong, and `dotvision synth` turns them into exit code 2.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("dv_synth_scene_test_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  const fs::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+const char* kMinimal = R"(
+name: tiny
+cameras:
+  - {id: 3, position: [0, 0, 3000], look_at: [0, 0, 0], focal_length: 300, size: [160, 128]}
+robots:
+  - {team: blue, id: 7, position: [100, -50], orientation: 1.0}
+ball: {position: [-200, 100]}
+)";
+
+// The message of the InputError that loading `text` throws ("" if none).
+std::string loadError(const std::string& name, const std::string& text) {
+  const std::string path = writeTemp(name, text);
+  try {
+    loadScene(path);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), path);
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SynthScene, MinimalSceneLoads) {
+  const SceneSpec s = loadScene(writeTemp("minimal.yaml", kMinimal));
+  EXPECT_EQ(s.name, "tiny");
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.cameras[0].calib.camera_id, 3u);
+  EXPECT_EQ(s.cameras[0].calib.image_width, 160u);
+  EXPECT_DOUBLE_EQ(s.cameras[0].calib.principal_point_x, 79.5);
+  ASSERT_EQ(s.robots.size(), 1u);
+  EXPECT_EQ(s.robots[0].team, Team::Blue);
+  EXPECT_EQ(s.robots[0].id, 7);
+  EXPECT_DOUBLE_EQ(s.ball.position.z, 21.5);  // resting by default
+  EXPECT_TRUE(s.ball.present);
+  // The camera looks straight down from 3 m: the field origin is at the
+  // principal point.
+  const auto px = CameraModel(s.cameras[0].calib).fieldToImage({0, 0, 0});
+  ASSERT_TRUE(px);
+  EXPECT_NEAR(px->u, 79.5, 1e-9);
+  EXPECT_NEAR(px->v, 63.5, 1e-9);
+}
+
+TEST(SynthScene, MalformedYamlNamesFileLineAndColumn) {
+  const std::string msg = loadError("malformed.yaml", "name: x\ncameras: [\n  {id: 0,\n");
+  EXPECT_NE(msg.find("malformed.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("malformed YAML"), std::string::npos) << msg;
+}
+
+TEST(SynthScene, WrongTypeNamesTheKeyAndPlace) {
+  const std::string msg = loadError("wrong_type.yaml", std::string(kMinimal) + "fps: fast\n");
+  EXPECT_NE(msg.find("wrong_type.yaml: line 8, column 6: fps: expected a number, got 'fast'"),
+            std::string::npos)
+      << msg;
+  const std::string msg2 = loadError(
+      "wrong_type2.yaml",
+      "cameras:\n  - {position: [0, 0, x], look_at: [0, 0, 0], focal_length: 300, size: [16, 16]}\n");
+  EXPECT_NE(msg2.find("line 2"), std::string::npos) << msg2;
+  EXPECT_NE(msg2.find("cameras[0].position"), std::string::npos) << msg2;
+  const std::string msg3 =
+      loadError("wrong_type3.yaml", std::string(kMinimal) + "lighting: {white_balance: 1.2}\n");
+  EXPECT_NE(msg3.find("lighting.white_balance: expected a list of 3 numbers"), std::string::npos)
+      << msg3;
+}
+
+TEST(SynthScene, UnknownKeyIsNamed) {
+  const std::string msg = loadError("unknown_key.yaml", std::string(kMinimal) + "fsp: 60\n");
+  EXPECT_NE(msg.find("line 8, column 1: unknown key 'fsp' in scene"), std::string::npos) << msg;
+  const std::string nested =
+      loadError("unknown_nested.yaml", std::string(kMinimal) + "lighting:\n  exposur: 2\n");
+  EXPECT_NE(nested.find("line 9, column 3: unknown key 'exposur' in lighting"), std::string::npos)
+      << nested;
+}
+
+TEST(SynthScene, ImpossibleValuesAreRejected) {
+  EXPECT_NE(loadError("bad_team.yaml",
+                      "cameras:\n  - {position: [0, 0, 3000], look_at: [0, 0, 0], focal_length: 300, "
+                      "size: [16, 16]}\nrobots:\n  - {team: red, id: 1, position: [0, 0]}\n")
+                .find("unknown team 'red'"),
+            std::string::npos);
+  EXPECT_NE(loadError("bad_id.yaml",
+                      "cameras:\n  - {position: [0, 0, 3000], look_at: [0, 0, 0], focal_length: 300, "
+                      "size: [16, 16]}\nrobots:\n  - {team: blue, id: 16, position: [0, 0]}\n")
+                .find("robots[0].id: 16 is outside [0, 15]"),
+            std::string::npos);
+  EXPECT_NE(loadError("no_cameras.yaml", "name: x\n").find("missing key 'cameras'"),
+            std::string::npos);
+  EXPECT_NE(loadError("empty.yaml", "").find("empty"), std::string::npos);
+  EXPECT_NE(loadError("frames.yaml", std::string(kMinimal) + "frames: 0\n").find("frames: 0 is outside"),
+            std::string::npos);
+}
+
+TEST(SynthScene, MissingFileIsAnInputError) {
+  const std::string path = "/nonexistent/dir/scene.yaml";
+  try {
+    loadScene(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), path);
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SynthScene, UnknownPresetListsTheKnownOnes) {
+  try {
+    presetScene("top_down_div_z");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(e.source(), "preset");
+    EXPECT_NE(msg.find("unknown preset 'top_down_div_z'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("top_down_div_b_half"), std::string::npos) << msg;
+  }
+}
+
+TEST(SynthScene, AllPresetsLoadAndRenderSmall) {
+  const std::vector<std::string> want = {"blue_white_balance", "dark_noisy",
+                                         "gray_carpet",        "motion_60fps_flicker",
+                                         "side_view",          "top_down_div_b_half",
+                                         "two_cameras_overlap", "uneven_light"};
+  const auto names = presetNames();
+  for (const auto& n : want)
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << "missing preset " << n;
+  for (const auto& n : names) {
+    SCOPED_TRACE(n);
+    SceneSpec s = presetScene(n);
+    EXPECT_EQ(s.name, n);
+    scaleImages(s, 0.0625);
+    const Renderer r(s);
+    for (size_t c = 0; c < s.cameras.size(); ++c) {
+      const RenderedFrame f = r.render(0, c);
+      EXPECT_EQ(f.image.cols, int(s.cameras[c].calib.image_width));
+      EXPECT_GT(f.truth.robots_yellow_size() + f.truth.robots_blue_size(), 0);
+    }
+  }
+  const SceneSpec top = presetScene("top_down_div_b_half");
+  EXPECT_EQ(top.robots.size(), 22u);
+  EXPECT_EQ(top.cameras[0].calib.image_width, 2448u);
+  const SceneSpec motion = presetScene("motion_60fps_flicker");
+  EXPECT_EQ(motion.frames, 60);
+  EXPECT_TRUE(motion.motion_blur);
+  double fastest = 0;
+  for (const auto& r : motion.robots) fastest = std::max(fastest, std::hypot(r.velocity.x, r.velocity.y));
+  EXPECT_GT(fastest, 1000);
+  EXPECT_LE(fastest, 3000);
+}
+
+TEST(SynthScene, RandomRobotsAreDistinctApartAndInView) {
+  SceneSpec s = defaultScene();
+  s.robots.clear();
+  const auto robots = placeRandomRobots(s, 0, 11, 11, 42);
+  ASSERT_EQ(robots.size(), 22u);
+  const CameraModel cam(s.cameras[0].calib);
+  for (size_t i = 0; i < robots.size(); ++i) {
+    const auto px = cam.fieldToImage({robots[i].position.x, robots[i].position.y, robots[i].height});
+    ASSERT_TRUE(px);
+    EXPECT_GE(px->u, 0);
+    EXPECT_LT(px->u, s.cameras[0].calib.image_width);
+    for (size_t j = 0; j < i; ++j) {
+      EXPECT_GE(std::hypot(robots[i].position.x - robots[j].position.x,
+                           robots[i].position.y - robots[j].position.y),
+                200);
+      if (robots[i].team == robots[j].team) {
+        EXPECT_NE(robots[i].id, robots[j].id);
+      }
+    }
+  }
+  const auto again = placeRandomRobots(s, 0, 11, 11, 42);
+  EXPECT_EQ(again[5].position.x, robots[5].position.x);
+}
+
+// Runs the CLI; returns its exit code and stderr.
+int runCli(const std::string& args, std::string& err) {
+  const std::string err_path = writeTemp("cli_stderr.txt", "");
+  const std::string cmd = std::string(DV_CLI_PATH) + " " + args + " >/dev/null 2>" + err_path;
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err_path);
+  err.assign(std::istreambuf_iterator<char>(in), {});
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SynthScene, CliExitsTwoWithOneLineForBadInput) {
+  std::string err;
+  const std::string bad = writeTemp("cli_bad.yaml", std::string(kMinimal) + "fsp: 60\n");
+  EXPECT_EQ(runCli("synth " + bad + " --out " + writeTemp("out_a", ""), err), 2);
+  EXPECT_NE(err.find("unknown key 'fsp'"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(runCli("synth --preset nope --out /tmp/dv_synth_never", err), 2);
+  EXPECT_NE(err.find("unknown preset 'nope'"), std::string::npos) << err;
+  EXPECT_EQ(runCli("synth /nonexistent.yaml --out /tmp/dv_synth_never", err), 2);
+  EXPECT_NE(err.find("/nonexistent.yaml"), std::string::npos) << err;
+  EXPECT_EQ(runCli("synth " + bad, err), 2);  // no --out
+}
+
+TEST(SynthScene, CliRendersAScene) {
+  const std::string scene = writeTemp("cli_ok.yaml", std::string(kMinimal) + "frames: 2\npng: true\n");
+  const fs::path out = fs::path(writeTemp("cli_ok_marker", "")).parent_path() / "cli_out";
+  std::string err;
+  ASSERT_EQ(runCli("synth " + scene + " --out " + out.string() + " --frames 1", err), 0) << err;
+  EXPECT_TRUE(fs::exists(out / "frame_3_00000.pgm"));
+  EXPECT_TRUE(fs::exists(out / "frame_3_00000.png"));
+  EXPECT_FALSE(fs::exists(out / "frame_3_00001.pgm"));  // --frames 1
+  EXPECT_TRUE(fs::exists(out / "geometry.json"));
+  EXPECT_TRUE(fs::exists(out / "truth.jsonl"));
+}
+
+}  // namespace
+}  // namespace dv
