@@ -413,6 +413,7 @@ struct Detector::Impl {
       }
       const double dt = std::min(std::max(dt_last, 0.0), opt.max_prediction_dt);
       tr.uncertainty = std::max(opt.min_uncertainty, 0.5 * opt.max_robot_acceleration * dt * dt);
+      if (tr.history < 2) tr.uncertainty = std::max(tr.uncertainty, opt.max_robot_speed * dt);
       tr.confirmed = false;
     }
   }

@@ -86,6 +86,9 @@ struct DetectorOptions {
   double max_robot_acceleration = 6500;  // mm/s^2
   double max_prediction_dt = 0.05;       // s, cap in the uncertainty
   double min_uncertainty = 20;           // mm
+  // A track seen in one frame only has no velocity yet: its uncertainty
+  // covers this speed over the (capped) frame gap instead.
+  double max_robot_speed = 4000;  // mm/s
   double track_gate = 90;                // mm, detection <-> track association
   // A tracked robot changes team/id only after this many consecutive frames
   // that agree on the same different identity.
