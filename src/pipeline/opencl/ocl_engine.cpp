@@ -1,0 +1,479 @@
+#include "pipeline/opencl/ocl_engine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+namespace dv {
+
+namespace {
+
+constexpr float kGradientFixedPoint = 65536.0f;  // as pipeline/kernels.h
+constexpr int kHeaderWords = 4;                  // DV_RESULT_HEADER in common.cl
+constexpr int kPeakWords = 6;                    // floats per OclPeak
+constexpr int kFirstPeaksRead = 256;             // peaks read with the counters
+
+static_assert(sizeof(OclPeak) == kPeakWords * sizeof(float), "OclPeak must match dv_peak");
+
+size_t roundUp(size_t n, size_t m) { return (n + m - 1) / m * m; }
+
+// Largest power of two <= n (n >= 1).
+size_t floorPow2(size_t n) {
+  size_t p = 1;
+  while (p * 2 <= n) p *= 2;
+  return p;
+}
+
+double eventMs(cl_event start, cl_event end) {
+  cl_ulong t0 = 0, t1 = 0;
+  if (!start || !end) return 0;
+  clGetEventProfilingInfo(start, CL_PROFILING_COMMAND_START, sizeof t0, &t0, nullptr);
+  clGetEventProfilingInfo(end, CL_PROFILING_COMMAND_END, sizeof t1, &t1, nullptr);
+  return t1 > t0 ? (t1 - t0) * 1e-6 : 0.0;
+}
+
+}  // namespace
+
+// Device objects; released in reverse order of creation.
+struct OclEngine::Buffers {
+  cl_mem input_host = nullptr;  // CL_MEM_ALLOC_HOST_PTR: pinned / shared frame memory
+  cl_mem input_dev = nullptr;   // discrete devices only
+  cl_mem rgbx = nullptr, remap_index = nullptr, remap_frac = nullptr, mask = nullptr;
+  cl_mem chroma = nullptr, gdot = nullptr, sat = nullptr, score = nullptr;
+  cl_mem results = nullptr, results_host = nullptr, half = nullptr;
+  uint32_t* results_mapped = nullptr;  // pinned host copy of the results header + peaks
+
+  cl_kernel subsample = nullptr, rectify = nullptr, gradient = nullptr, sat_rows = nullptr,
+            sat_cols = nullptr, score_k = nullptr, peaks = nullptr;
+  size_t subsample_local[2] = {16, 16}, pixel_local[2] = {32, 8};
+  size_t sat_rows_local = 256, sat_cols_local[2] = {32, 8};
+
+  // Events of the last frame: upload, subsample, rectify, gradient, sat rows,
+  // sat columns, score, peaks, download (+ second download).
+  enum { kUpload, kSubsample, kRectify, kGradient, kSatRows, kSatCols, kScore, kPeaks, kDownload,
+         kDownload2, kEvents };
+  cl_event events[kEvents] = {};
+
+  void releaseEvents() {
+    for (auto& e : events)
+      if (e) clReleaseEvent(e), e = nullptr;
+  }
+
+  ~Buffers() {
+    releaseEvents();
+    for (cl_kernel k : {subsample, rectify, gradient, sat_rows, sat_cols, score_k, peaks})
+      if (k) clReleaseKernel(k);
+    for (cl_mem m : {input_host, input_dev, rgbx, remap_index, remap_frac, mask, chroma, gdot, sat,
+                     score, results, results_host, half})
+      if (m) clReleaseMemObject(m);
+  }
+};
+
+OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
+    : ctx_(std::move(ctx)), cfg_(std::move(config)), b_(std::make_unique<Buffers>()) {
+  const auto& c = cfg_;
+  if (c.image_width < 4 || c.image_height < 4)
+    throw std::invalid_argument("OpenCL pipeline: image size too small");
+  if (c.bayer && (c.image_width % 2 || c.image_height % 2))
+    throw std::invalid_argument("OpenCL pipeline: Bayer image size must be even");
+  src_width_ = c.bayer ? c.image_width / 2 : c.image_width;
+  src_height_ = c.bayer ? c.image_height / 2 : c.image_height;
+  const size_t cells = static_cast<size_t>(c.grid_width) * c.grid_height;
+  if (c.grid_width < 8 || c.grid_height < 8 || c.remap_index.size() != cells ||
+      c.remap_frac.size() != cells || c.peak_mask.size() != cells)
+    throw std::invalid_argument("OpenCL pipeline: grid tables do not match the grid size");
+  // Every bilinear footprint must lie inside the RGBX image: the kernels do
+  // not bounds-check their four reads.
+  const int64_t last = static_cast<int64_t>(src_width_) * src_height_ - src_width_ - 1;
+  for (int32_t i : c.remap_index)
+    if (i < 0 || i >= last) throw std::invalid_argument("OpenCL pipeline: remap index out of range");
+  const int window = c.circle_score ? std::max(1, static_cast<int>(std::floor(c.circle_radius)))
+                                    : c.quadrant_radius;
+  if (c.quadrant_radius < 1 || c.margin < window + static_cast<int>(std::floor(c.gradient_scale)) + 2)
+    throw std::invalid_argument("OpenCL pipeline: margin smaller than the score window");
+
+  frame_stride_ = c.bayer ? c.image_width : 3 * c.image_width;
+  frame_bytes_ = static_cast<size_t>(frame_stride_) * c.image_height;
+  const auto& dev = ctx_->device();
+  zero_copy_ = dev.host_unified_memory;
+  fp64_ = ctx_->fp64();
+  capacity_ = std::max({1024, 4 * c.max_blobs, 16});
+  const int ws = src_width_, hs = src_height_;
+  luma_count_ = static_cast<float>(3.0 * ((hs + 15) / 16) * ((ws + 3) / 4));
+  peaks_.reserve(capacity_);
+
+  cl_context cx = ctx_->context();
+  cl_int st = CL_SUCCESS;
+  auto make = [&](cl_mem_flags flags, size_t bytes, const void* host, const char* what) {
+    cl_mem m = clCreateBuffer(cx, flags, std::max<size_t>(bytes, 4), const_cast<void*>(host), &st);
+    if (st != CL_SUCCESS)
+      throw OclError(std::string("cannot allocate the ") + what + " buffer (" +
+                         std::to_string(bytes >> 10) + " KiB) on " + dev.device_name,
+                     st);
+    return m;
+  };
+  const cl_mem_flags input_flags = (c.pinned_input ? CL_MEM_ALLOC_HOST_PTR : 0) | CL_MEM_READ_ONLY;
+  if (!c.pinned_input) zero_copy_ = false;
+  b_->input_host = make(input_flags, frame_bytes_, nullptr, "frame");
+  if (!zero_copy_) b_->input_dev = make(CL_MEM_READ_ONLY, frame_bytes_, nullptr, "device frame");
+  b_->rgbx = make(CL_MEM_READ_WRITE, 4ull * ws * hs, nullptr, "RGBX");
+  b_->remap_index = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 4, c.remap_index.data(), "remap");
+  b_->remap_frac = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 2, c.remap_frac.data(), "remap");
+  b_->mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells, c.peak_mask.data(), "peak mask");
+  b_->chroma = make(CL_MEM_READ_WRITE, cells * 8, nullptr, "chroma");
+  b_->gdot = make(CL_MEM_READ_WRITE, cells * 4, nullptr, "gradient");
+  const size_t sat_words = static_cast<size_t>(c.grid_width + 1) * (c.grid_height + 1);
+  {
+    std::vector<uint32_t> zeros(sat_words, 0);  // row 0 of the table stays 0
+    b_->sat = make(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sat_words * 4, zeros.data(), "summed-area");
+  }
+  b_->score = make(CL_MEM_READ_WRITE, cells * 4, nullptr, "score");
+  const size_t result_bytes = (kHeaderWords + static_cast<size_t>(capacity_) * kPeakWords) * 4;
+  {
+    std::vector<uint32_t> zeros(result_bytes / 4, 0);
+    b_->results = make(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, result_bytes, zeros.data(), "peak list");
+  }
+  b_->results_host = make(CL_MEM_ALLOC_HOST_PTR | CL_MEM_WRITE_ONLY, result_bytes, nullptr, "peak list");
+  int half[64] = {0};
+  float circle_norm = 1;
+  int circle_rows = 1;
+  {
+    const int rows = std::max(1, static_cast<int>(std::floor(c.circle_radius)));
+    circle_rows = std::min(rows, 63);
+    int count = 0;
+    for (int j = 1; j <= circle_rows; ++j) {
+      half[j] = static_cast<int>(
+          std::floor(std::sqrt(std::max(0.0, c.circle_radius * c.circle_radius - j * j))));
+      count += half[j];
+    }
+    circle_norm = 1.0f / (kGradientFixedPoint * std::max(1, count));
+  }
+  b_->half = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof half, half, "circle");
+
+  cl_command_queue q = ctx_->queue();
+  // Pinned host memory stays mapped for the engine's life where it is a DMA
+  // staging area; on shared-memory devices it is mapped per frame instead.
+  if (!zero_copy_) {
+    mapped_ = static_cast<uint8_t*>(
+        clEnqueueMapBuffer(q, b_->input_host, CL_TRUE, CL_MAP_WRITE, 0, frame_bytes_, 0, nullptr, nullptr, &st));
+    if (st != CL_SUCCESS) throw OclError("cannot map the pinned frame buffer", st);
+  }
+  b_->results_mapped = static_cast<uint32_t*>(
+      clEnqueueMapBuffer(q, b_->results_host, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, result_bytes, 0,
+                         nullptr, nullptr, &st));
+  if (st != CL_SUCCESS) throw OclError("cannot map the peak list buffer", st);
+
+  // Kernels and their fixed arguments.
+  auto arg = [&](cl_kernel k, cl_uint i, size_t size, const void* v) {
+    st = clSetKernelArg(k, i, size, v);
+    if (st != CL_SUCCESS) throw OclError("cannot set argument " + std::to_string(i), st);
+  };
+  auto argMem = [&](cl_kernel k, cl_uint i, cl_mem m) { arg(k, i, sizeof(cl_mem), &m); };
+  auto argInt = [&](cl_kernel k, cl_uint i, int v) { arg(k, i, sizeof(cl_int), &v); };
+  auto argFloat = [&](cl_kernel k, cl_uint i, float v) { arg(k, i, sizeof(cl_float), &v); };
+  auto kernelMax = [&](cl_kernel k) {
+    size_t n = 0;
+    clGetKernelWorkGroupInfo(k, dev.device, CL_KERNEL_WORK_GROUP_SIZE, sizeof n, &n, nullptr);
+    return std::max<size_t>(1, std::min(n ? n : dev.max_work_group_size, dev.max_work_group_size));
+  };
+  const cl_mem input = zero_copy_ ? b_->input_host : b_->input_dev;
+
+  if (c.bayer) {
+    b_->subsample = ctx_->createKernel("bayer_subsample");
+    argMem(b_->subsample, 0, input);
+    argInt(b_->subsample, 1, frame_stride_);
+    argInt(b_->subsample, 2, ws);
+    argInt(b_->subsample, 3, hs);
+    argInt(b_->subsample, 4, c.red_x);
+    argInt(b_->subsample, 5, c.red_y);
+    argInt(b_->subsample, 6, c.blue_x);
+    argInt(b_->subsample, 7, c.blue_y);
+    argMem(b_->subsample, 8, b_->rgbx);
+    argMem(b_->subsample, 9, b_->results);
+  } else {
+    b_->subsample = ctx_->createKernel("bgr_to_rgbx");
+    argMem(b_->subsample, 0, input);
+    argInt(b_->subsample, 1, frame_stride_);
+    argInt(b_->subsample, 2, ws);
+    argInt(b_->subsample, 3, hs);
+    argMem(b_->subsample, 4, b_->rgbx);
+    argMem(b_->subsample, 5, b_->results);
+  }
+  {
+    // The brightness reduction needs a power-of-two group of at most 256.
+    const size_t m = floorPow2(std::min<size_t>(256, kernelMax(b_->subsample)));
+    b_->subsample_local[0] = std::min<size_t>(16, m);
+    b_->subsample_local[1] = m / b_->subsample_local[0];
+  }
+
+  b_->rectify = ctx_->createKernel("rectify_chroma");
+  argMem(b_->rectify, 0, b_->rgbx);
+  argInt(b_->rectify, 1, ws);
+  argMem(b_->rectify, 2, b_->remap_index);
+  argMem(b_->rectify, 3, b_->remap_frac);
+  argInt(b_->rectify, 4, c.grid_width);
+  argInt(b_->rectify, 5, c.grid_height);
+  const cl_float4 ca = {{c.chroma_a[0], c.chroma_a[1], c.chroma_a[2], 0}};
+  const cl_float4 cb = {{c.chroma_b[0], c.chroma_b[1], c.chroma_b[2], 0}};
+  arg(b_->rectify, 6, sizeof ca, &ca);
+  arg(b_->rectify, 7, sizeof cb, &cb);
+  argFloat(b_->rectify, 8, c.luma_floor_fraction);
+  argFloat(b_->rectify, 9, luma_count_);
+  argMem(b_->rectify, 10, b_->results);
+  argMem(b_->rectify, 11, b_->chroma);
+
+  b_->gradient = ctx_->createKernel("gradient_dot");
+  const int k = static_cast<int>(std::floor(c.gradient_scale));
+  const float a = static_cast<float>(c.gradient_scale - k), na = 1 - a;
+  argMem(b_->gradient, 0, b_->chroma);
+  argInt(b_->gradient, 1, c.grid_width);
+  argInt(b_->gradient, 2, c.grid_height);
+  argInt(b_->gradient, 3, k);
+  argFloat(b_->gradient, 4, a);
+  argFloat(b_->gradient, 5, na);
+  argMem(b_->gradient, 6, b_->gdot);
+
+  b_->sat_rows = ctx_->createKernel("sat_rows");
+  b_->sat_rows_local = floorPow2(std::min<size_t>(256, kernelMax(b_->sat_rows)));
+  argMem(b_->sat_rows, 0, b_->gdot);
+  argInt(b_->sat_rows, 1, c.grid_width);
+  argMem(b_->sat_rows, 2, b_->sat);
+  arg(b_->sat_rows, 3, b_->sat_rows_local * 4, nullptr);
+
+  b_->sat_cols = ctx_->createKernel("sat_columns");
+  {
+    const size_t m = floorPow2(std::min<size_t>(1024, kernelMax(b_->sat_cols)));
+    b_->sat_cols_local[0] = std::min<size_t>(32, m);
+    b_->sat_cols_local[1] = std::min<size_t>(32, m / b_->sat_cols_local[0]);
+  }
+  argMem(b_->sat_cols, 0, b_->sat);
+  argInt(b_->sat_cols, 1, c.grid_width);
+  argInt(b_->sat_cols, 2, c.grid_height);
+  arg(b_->sat_cols, 3, b_->sat_cols_local[0] * b_->sat_cols_local[1] * 4, nullptr);
+
+  if (c.circle_score) {
+    b_->score_k = ctx_->createKernel("score_circle_min");
+    argMem(b_->score_k, 0, b_->sat);
+    argInt(b_->score_k, 1, c.grid_width);
+    argInt(b_->score_k, 2, c.grid_height);
+    argMem(b_->score_k, 3, b_->half);
+    argInt(b_->score_k, 4, circle_rows);
+    argFloat(b_->score_k, 5, circle_norm);
+    argMem(b_->score_k, 6, b_->score);
+  } else {
+    b_->score_k = ctx_->createKernel("score_quadrant_min");
+    const int r = c.quadrant_radius;
+    argMem(b_->score_k, 0, b_->sat);
+    argInt(b_->score_k, 1, c.grid_width);
+    argInt(b_->score_k, 2, c.grid_height);
+    argInt(b_->score_k, 3, r);
+    argFloat(b_->score_k, 4, 1.0f / (kGradientFixedPoint * r * r));
+    argMem(b_->score_k, 5, b_->score);
+  }
+
+  b_->peaks = ctx_->createKernel("find_peaks");
+  argMem(b_->peaks, 0, b_->score);
+  argMem(b_->peaks, 1, b_->mask);
+  argInt(b_->peaks, 2, c.grid_width);
+  argInt(b_->peaks, 3, c.grid_height);
+  argInt(b_->peaks, 4, c.margin);
+  argFloat(b_->peaks, 5, c.threshold);
+  argMem(b_->peaks, 6, b_->rgbx);
+  argInt(b_->peaks, 7, ws);
+  argMem(b_->peaks, 8, b_->remap_index);
+  argMem(b_->peaks, 9, b_->remap_frac);
+  if (fp64_) {
+    const double r = c.color_radius;
+    arg(b_->peaks, 10, sizeof r, &r);
+  } else {
+    argFloat(b_->peaks, 10, static_cast<float>(c.color_radius));
+  }
+  argMem(b_->peaks, 11, b_->results);
+  argInt(b_->peaks, 12, capacity_);
+
+  size_t pixel_max = std::min(kernelMax(b_->rectify), kernelMax(b_->gradient));
+  pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), size_t{256}});
+  pixel_max = floorPow2(pixel_max);
+  b_->pixel_local[0] = std::min<size_t>(32, pixel_max);
+  b_->pixel_local[1] = pixel_max / b_->pixel_local[0];
+}
+
+OclEngine::~OclEngine() {
+  if (!b_ || !ctx_) return;
+  cl_command_queue q = ctx_->queue();
+  if (mapped_) clEnqueueUnmapMemObject(q, b_->input_host, mapped_, 0, nullptr, nullptr);
+  if (b_->results_mapped)
+    clEnqueueUnmapMemObject(q, b_->results_host, b_->results_mapped, 0, nullptr, nullptr);
+  clFinish(q);
+}
+
+uint8_t* OclEngine::frameBuffer() {
+  if (mapped_) return mapped_;
+  cl_int st = CL_SUCCESS;
+  mapped_ = static_cast<uint8_t*>(clEnqueueMapBuffer(ctx_->queue(), b_->input_host, CL_TRUE,
+                                                     CL_MAP_WRITE_INVALIDATE_REGION, 0, frame_bytes_,
+                                                     0, nullptr, nullptr, &st));
+  if (st != CL_SUCCESS) {
+    mapped_ = nullptr;
+    fail("mapping the frame buffer", st);
+  }
+  return mapped_;
+}
+
+bool OclEngine::fail(const char* what, int status) {
+  error_ = std::string("OpenCL ") + what + " failed (" + oclStatusName(status) + ") on " +
+           ctx_->device().device_name;
+  b_->releaseEvents();
+  // Leave the counters as a fresh frame expects them.
+  clFinish(ctx_->queue());
+  const uint32_t zeros[kHeaderWords] = {0, 0, 0, 0};
+  clEnqueueWriteBuffer(ctx_->queue(), b_->results, CL_TRUE, 0, sizeof zeros, zeros, 0, nullptr, nullptr);
+  return false;
+}
+
+bool OclEngine::run() {
+  const auto t_start = std::chrono::steady_clock::now();
+  error_.clear();
+  peaks_.clear();
+  peaks_found_ = 0;
+  b_->releaseEvents();
+  if (!mapped_ && !frameBuffer()) return false;
+  cl_command_queue q = ctx_->queue();
+  auto* ev = b_->events;
+  cl_int st = CL_SUCCESS;
+  if (zero_copy_) {
+    st = clEnqueueUnmapMemObject(q, b_->input_host, mapped_, 0, nullptr, &ev[Buffers::kUpload]);
+    mapped_ = nullptr;
+  } else {
+    st = clEnqueueWriteBuffer(q, b_->input_dev, CL_FALSE, 0, frame_bytes_, mapped_, 0, nullptr,
+                              &ev[Buffers::kUpload]);
+  }
+  if (st != CL_SUCCESS) return fail("frame upload", st);
+
+  const auto& c = cfg_;
+  const size_t* pl = b_->pixel_local;
+  const size_t grid_global[2] = {roundUp(c.grid_width, pl[0]), roundUp(c.grid_height, pl[1])};
+  const size_t* sl = b_->subsample_local;
+  const size_t src_global[2] = {roundUp(src_width_, sl[0]), roundUp(src_height_, sl[1])};
+  const size_t rows_global = static_cast<size_t>(c.grid_height) * b_->sat_rows_local;
+  const size_t* cl = b_->sat_cols_local;
+  const size_t cols_global[2] = {roundUp(c.grid_width + 1, cl[0]), cl[1]};
+
+  if ((st = clEnqueueNDRangeKernel(q, b_->subsample, 2, nullptr, src_global, sl, 0, nullptr,
+                                   &ev[Buffers::kSubsample])) != CL_SUCCESS)
+    return fail("Bayer subsampling", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->rectify, 2, nullptr, grid_global, pl, 0, nullptr,
+                                   &ev[Buffers::kRectify])) != CL_SUCCESS)
+    return fail("rectification", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->gradient, 2, nullptr, grid_global, pl, 0, nullptr,
+                                   &ev[Buffers::kGradient])) != CL_SUCCESS)
+    return fail("gradient", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->sat_rows, 1, nullptr, &rows_global, &b_->sat_rows_local, 0,
+                                   nullptr, &ev[Buffers::kSatRows])) != CL_SUCCESS)
+    return fail("summed-area rows", st);
+  if (!c.circle_score &&
+      (st = clEnqueueNDRangeKernel(q, b_->sat_cols, 2, nullptr, cols_global, cl, 0, nullptr,
+                                   &ev[Buffers::kSatCols])) != CL_SUCCESS)
+    return fail("summed-area columns", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->score_k, 2, nullptr, grid_global, pl, 0, nullptr,
+                                   &ev[Buffers::kScore])) != CL_SUCCESS)
+    return fail("blob score", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->peaks, 2, nullptr, grid_global, pl, 0, nullptr,
+                                   &ev[Buffers::kPeaks])) != CL_SUCCESS)
+    return fail("peak extraction", st);
+
+  // Counters and the first peaks in one transfer; the rest only if needed.
+  const int first = std::min(capacity_, kFirstPeaksRead);
+  uint32_t* res = b_->results_mapped;
+  if ((st = clEnqueueReadBuffer(q, b_->results, CL_TRUE, 0, (kHeaderWords + first * kPeakWords) * 4, res,
+                                0, nullptr, &ev[Buffers::kDownload])) != CL_SUCCESS)
+    return fail("peak list download", st);
+  peaks_found_ = static_cast<int>(res[0]);
+  const int n = std::min(peaks_found_, capacity_);
+  if (n > first &&
+      (st = clEnqueueReadBuffer(q, b_->results, CL_TRUE, (kHeaderWords + first * kPeakWords) * 4,
+                                static_cast<size_t>(n - first) * kPeakWords * 4,
+                                res + kHeaderWords + first * kPeakWords, 0, nullptr,
+                                &ev[Buffers::kDownload2])) != CL_SUCCESS)
+    return fail("peak list download", st);
+  std::memcpy(&last_luma_floor_, &res[2], sizeof(float));
+
+  const auto* found = reinterpret_cast<const OclPeak*>(res + kHeaderWords);
+  peaks_.assign(found, found + n);
+  // Strongest first; ties by position so the order does not depend on the
+  // device's scheduling.
+  std::sort(peaks_.begin(), peaks_.end(), [](const OclPeak& a, const OclPeak& b) {
+    if (a.score != b.score) return a.score > b.score;
+    if (a.y != b.y) return a.y < b.y;
+    return a.x < b.x;
+  });
+  if (static_cast<int>(peaks_.size()) > c.max_blobs) peaks_.resize(std::max(0, c.max_blobs));
+
+  auto& t = times_;
+  t.upload_ms = eventMs(ev[Buffers::kUpload], ev[Buffers::kUpload]);
+  t.bayer_ms = eventMs(ev[Buffers::kSubsample], ev[Buffers::kSubsample]);
+  t.rectify_ms = eventMs(ev[Buffers::kRectify], ev[Buffers::kRectify]);
+  t.gradient_ms = eventMs(ev[Buffers::kGradient], ev[Buffers::kGradient]);
+  t.sat_ms = eventMs(ev[Buffers::kSatRows], ev[Buffers::kSatRows]) +
+             eventMs(ev[Buffers::kSatCols], ev[Buffers::kSatCols]);
+  t.score_ms = eventMs(ev[Buffers::kScore], ev[Buffers::kScore]);
+  t.peaks_ms = eventMs(ev[Buffers::kPeaks], ev[Buffers::kPeaks]);
+  t.download_ms = eventMs(ev[Buffers::kDownload], ev[Buffers::kDownload]) +
+                  eventMs(ev[Buffers::kDownload2], ev[Buffers::kDownload2]);
+  t.device_ms = eventMs(ev[Buffers::kUpload],
+                        ev[Buffers::kDownload2] ? ev[Buffers::kDownload2] : ev[Buffers::kDownload]);
+  b_->releaseEvents();
+  t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  return true;
+}
+
+double OclEngine::timeUploadOnly() {
+  cl_command_queue q = ctx_->queue();
+  cl_event e = nullptr;
+  cl_int st;
+  if (zero_copy_) {
+    if (!frameBuffer()) return 0;
+    st = clEnqueueUnmapMemObject(q, b_->input_host, mapped_, 0, nullptr, &e);
+    mapped_ = nullptr;
+  } else {
+    st = clEnqueueWriteBuffer(q, b_->input_dev, CL_TRUE, 0, frame_bytes_, mapped_, 0, nullptr, &e);
+  }
+  if (st != CL_SUCCESS) return 0;
+  clWaitForEvents(1, &e);
+  const double ms = eventMs(e, e);
+  clReleaseEvent(e);
+  return ms;
+}
+
+namespace {
+
+template <class T>
+std::vector<T> readAll(cl_command_queue q, cl_mem m, size_t count) {
+  std::vector<T> out(count);
+  clEnqueueReadBuffer(q, m, CL_TRUE, 0, count * sizeof(T), out.data(), 0, nullptr, nullptr);
+  return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> OclEngine::readRgbx() const {
+  return readAll<uint8_t>(ctx_->queue(), b_->rgbx, 4ull * src_width_ * src_height_);
+}
+std::vector<float> OclEngine::readChroma() const {
+  return readAll<float>(ctx_->queue(), b_->chroma, 2ull * cfg_.grid_width * cfg_.grid_height);
+}
+std::vector<int32_t> OclEngine::readGradient() const {
+  return readAll<int32_t>(ctx_->queue(), b_->gdot, 1ull * cfg_.grid_width * cfg_.grid_height);
+}
+std::vector<uint32_t> OclEngine::readSat() const {
+  return readAll<uint32_t>(ctx_->queue(), b_->sat, (cfg_.grid_width + 1ull) * (cfg_.grid_height + 1ull));
+}
+std::vector<float> OclEngine::readScore() const {
+  return readAll<float>(ctx_->queue(), b_->score, 1ull * cfg_.grid_width * cfg_.grid_height);
+}
+float OclEngine::lastLumaFloor() const { return last_luma_floor_; }
+
+}  // namespace dv

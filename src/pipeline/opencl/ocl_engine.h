@@ -1,0 +1,126 @@
+#pragma once
+// The OpenCL pixel pipeline for one camera, below the camera model: it takes
+// the per-camera tables (remap, peak mask, radii) ready-made and turns raw
+// frames into a sorted peak list. Depends only on OpenCL and the standard
+// library, so the stand-alone GPU benchmark can link it without OpenCV.
+//
+// Memory (thesis A.2): the frame goes into driver-allocated host memory
+// (CL_MEM_ALLOC_HOST_PTR). On devices that share memory with the host the
+// kernels read it in place (map/unmap only); on discrete GPUs it stays mapped
+// as pinned staging memory and is copied by DMA. Every buffer is created once
+// in the constructor; run() allocates nothing of its own.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pipeline/opencl/ocl_runtime.h"
+
+namespace dv {
+
+struct OclEngineConfig {
+  // Input frame: 8-bit Bayer mosaic (bayer = true, even size) or 8-bit BGR.
+  int image_width = 0, image_height = 0;
+  bool bayer = true;
+  int red_x = 0, red_y = 0, blue_x = 1, blue_y = 1;  // Bayer sites in the 2x2 cell
+
+  // Rectified grid and its remap table into the RGBX image (image size / 2 for
+  // Bayer): top-left sample index and fractions fx | fy << 8 in 1/256 sample.
+  int grid_width = 0, grid_height = 0;
+  std::vector<int32_t> remap_index;
+  std::vector<uint16_t> remap_frac;
+  std::vector<uint8_t> peak_mask;  // 1 where a peak may be reported
+
+  float chroma_a[3] = {0, 0, 0}, chroma_b[3] = {0, 0, 0};
+  float luma_floor_fraction = 0.25f;
+  double gradient_scale = 1;  // cells
+  bool circle_score = false;
+  int quadrant_radius = 2;    // cells (quadrant score)
+  double circle_radius = 2;   // cells (circle score)
+  int margin = 4;             // cells next to the border that never hold a peak
+  double color_radius = 1;    // cells, disc of the mean blob color
+  float threshold = 0.02f;
+  int max_blobs = 2000;
+
+  // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
+  bool pinned_input = true;
+};
+
+// A peak on the grid, strongest first.
+struct OclPeak {
+  float x, y, score, r, g, b;
+};
+
+// Per-stage device times of the last frame from profiling events (ms), plus
+// the host wall time of run() (upload to peak list on the host).
+struct OclStageTimes {
+  double upload_ms = 0, bayer_ms = 0, rectify_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
+         peaks_ms = 0, download_ms = 0;
+  double device_ms = 0;  // first command's start to last command's end
+  double wall_ms = 0;
+};
+
+class OclEngine {
+ public:
+  // Creates every buffer and kernel. Throws OclError (out of memory, ...)
+  // or std::invalid_argument for an inconsistent config.
+  OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config);
+  ~OclEngine();
+  OclEngine(const OclEngine&) = delete;
+  OclEngine& operator=(const OclEngine&) = delete;
+
+  const OclEngineConfig& config() const { return cfg_; }
+  const OclContext& context() const { return *ctx_; }
+  // Bytes of one input frame, and its row stride.
+  size_t frameBytes() const { return frame_bytes_; }
+  int frameStride() const { return frame_stride_; }
+  // True when the device reads the frame in place (no copy to the device).
+  bool zeroCopy() const { return zero_copy_; }
+
+  // Host memory to write the next frame into (frameBytes(), rows of
+  // frameStride()). Valid until run() is called. nullptr on failure (see error()).
+  uint8_t* frameBuffer();
+  // Processes the frame in frameBuffer(). False (and error() set) on an
+  // OpenCL failure; never throws.
+  bool run();
+
+  const std::vector<OclPeak>& peaks() const { return peaks_; }
+  // Peaks found before truncation to max_blobs (may exceed the list).
+  int peaksFound() const { return peaks_found_; }
+  const OclStageTimes& times() const { return times_; }
+  const std::string& error() const { return error_; }
+
+  // Stage outputs of the last frame, read back for tests (not for hot paths).
+  std::vector<uint8_t> readRgbx() const;      // 4 bytes per RGBX sample
+  std::vector<float> readChroma() const;      // 2 floats per cell
+  std::vector<int32_t> readGradient() const;  // fixed point, x 65536
+  std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
+  std::vector<float> readScore() const;
+  float lastLumaFloor() const;                // needs the sum: read before the next run
+
+  // Only the upload of one frame (for comparison with the end-to-end time).
+  double timeUploadOnly();
+
+ private:
+  struct Buffers;
+  bool fail(const char* what, int status);
+
+  std::shared_ptr<OclContext> ctx_;
+  OclEngineConfig cfg_;
+  std::unique_ptr<Buffers> b_;
+  size_t frame_bytes_ = 0;
+  int frame_stride_ = 0;
+  int src_width_ = 0, src_height_ = 0;
+  bool zero_copy_ = false;
+  uint8_t* mapped_ = nullptr;
+  bool fp64_ = false;
+  int capacity_ = 0;
+  float luma_count_ = 1;
+  std::vector<OclPeak> peaks_;
+  int peaks_found_ = 0;
+  OclStageTimes times_;
+  std::string error_;
+  float last_luma_floor_ = 0;
+};
+
+}  // namespace dv

@@ -1,0 +1,30 @@
+# OpenCL backend build steps, included from the top-level CMakeLists.txt after
+# dv_pipeline exists.
+#  - kernels/*.cl become a generated C++ source compiled into dv_pipeline.
+#  - dotvision_ocl_bench: a stand-alone frame benchmark that needs only the C++
+#    runtime (linked statically) and libOpenCL.so.1, for GPU machines without
+#    the project's other libraries.
+file(GLOB DV_KERNEL_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/kernels/*.cl)
+list(SORT DV_KERNEL_FILES)
+string(REPLACE ";" "|" DV_KERNEL_FILES_ARG "${DV_KERNEL_FILES}")
+set(DV_EMBEDDED_KERNELS_CPP ${PROJECT_BINARY_DIR}/kernels/embedded_kernels.cpp)
+add_custom_command(OUTPUT ${DV_EMBEDDED_KERNELS_CPP}
+  COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/kernels
+  COMMAND ${CMAKE_COMMAND} -DOUT=${DV_EMBEDDED_KERNELS_CPP} -DFILES=${DV_KERNEL_FILES_ARG}
+          -P ${PROJECT_SOURCE_DIR}/kernels/embed_kernels.cmake
+  DEPENDS ${DV_KERNEL_FILES} ${PROJECT_SOURCE_DIR}/kernels/embed_kernels.cmake
+  COMMENT "Embedding OpenCL kernels" VERBATIM)
+target_sources(dv_pipeline PRIVATE ${DV_EMBEDDED_KERNELS_CPP})
+target_compile_definitions(dv_pipeline PUBLIC CL_TARGET_OPENCL_VERSION=120)
+
+# The engine itself uses nothing but OpenCL and the standard library.
+set(DV_OCL_ENGINE_SRCS
+  ${PROJECT_SOURCE_DIR}/src/pipeline/opencl/ocl_runtime.cpp
+  ${PROJECT_SOURCE_DIR}/src/pipeline/opencl/ocl_engine.cpp
+  ${DV_EMBEDDED_KERNELS_CPP})
+add_executable(dotvision_ocl_bench
+  ${PROJECT_SOURCE_DIR}/bench/standalone/ocl_frame_bench.cpp ${DV_OCL_ENGINE_SRCS})
+target_include_directories(dotvision_ocl_bench PRIVATE ${PROJECT_SOURCE_DIR}/src)
+target_compile_definitions(dotvision_ocl_bench PRIVATE CL_TARGET_OPENCL_VERSION=120)
+target_link_libraries(dotvision_ocl_bench PRIVATE OpenCL::OpenCL Threads::Threads)
+target_link_options(dotvision_ocl_bench PRIVATE -static-libstdc++ -static-libgcc)
