@@ -20,6 +20,7 @@ struct SynthOptions {
   std::string out_dir;
   int frames = 0;  // 0 = as the scene says
   long long seed = -1;
+  double scale = 1;
   bool png = false;
   bool list = false;
 };
@@ -36,6 +37,8 @@ CommandFn addSynthCommand(CLI::App& root) {
   cmd->add_option("--frames", opt->frames, "Render only this many frames")->check(CLI::Range(1, 100000));
   cmd->add_option("--seed", opt->seed, "Override the scene's seed (noise, texture)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--scale", opt->scale, "Scale the images (e.g. 0.25 for quick previews)")
+      ->check(CLI::Range(0.01, 4.0));
   cmd->add_flag("--png", opt->png, "Also write PNG RGB frames");
   cmd->add_flag("--list-presets", opt->list, "List the shipped presets and exit");
   return [opt] {
@@ -50,6 +53,7 @@ CommandFn addSynthCommand(CLI::App& root) {
     if (opt->frames > 0) spec.frames = opt->frames;
     if (opt->seed >= 0) spec.seed = uint64_t(opt->seed);
     if (opt->png) spec.write_png = true;
+    if (opt->scale != 1) scaleImages(spec, opt->scale);
     const auto start = std::chrono::steady_clock::now();
     try {
       writeScene(spec, opt->out_dir);

@@ -138,8 +138,10 @@ std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_
 void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_speed,
                         double ball_max_speed, double duration, uint64_t seed) {
   SplitMix64 rng(mixSeed(seed, 0x4D6F7665ull));
+  // Speeds between a quarter of the maximum and the maximum, so a motion
+  // scene really has fast objects.
   auto randomVelocity = [&](double max) {
-    const double speed = rng.uniform(0, max), dir = rng.uniform(-kPi, kPi);
+    const double speed = rng.uniform(0.25 * max, max), dir = rng.uniform(-kPi, kPi);
     return FieldMm{speed * std::cos(dir), speed * std::sin(dir)};
   };
   auto endInside = [&](FieldMm p, FieldMm v, double clearance) {

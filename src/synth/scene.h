@@ -145,9 +145,9 @@ std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_
                                           int yellow, int blue, uint64_t seed,
                                           double min_distance = 200, double margin_px = 40);
 
-// Gives every robot a random velocity (speed up to max_speed mm/s, any
-// direction) and angular velocity (up to max_angular_speed rad/s), and the
-// ball one up to ball_max_speed, such that over `duration` seconds no two
+// Gives every robot a random velocity (speed between max_speed / 4 and
+// max_speed mm/s, any direction) and angular velocity (up to max_angular_speed rad/s), and the
+// ball one likewise up to ball_max_speed, such that over `duration` seconds no two
 // robots come closer than 200 mm, the ball stays clear of the robots and all
 // stay inside the walls. Where no such motion is found, the object stands.
 // Deterministic for `seed`.
