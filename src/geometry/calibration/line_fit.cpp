@@ -47,16 +47,11 @@ struct IntrinsicsPrior {
   double cx, cy, sigma;
 };
 
-struct Match {
-  ImagePx px;
-  int element;
-  double mm_per_px;
-  double distance_px;
-};
+using Match = LinePixelMatch;
 
-// Line pixels within the gate of the model, with their nearest element and
-// the local scale, for the current parameters.
-std::vector<Match> matchPixels(const CameraParams& p, const std::vector<ImagePx>& pixels,
+}  // namespace
+
+std::vector<LinePixelMatch> matchLinePixels(const CameraParams& p, const std::vector<ImagePx>& pixels,
                                const FieldLineModel& model, double gate_px) {
   std::vector<Match> out;
   out.reserve(pixels.size());
@@ -75,6 +70,8 @@ std::vector<Match> matchPixels(const CameraParams& p, const std::vector<ImagePx>
   return out;
 }
 
+namespace {
+
 double cauchy(double d, double s) { return s * s * std::log1p((d * d) / (s * s)); }
 
 }  // namespace
@@ -82,7 +79,7 @@ double cauchy(double d, double s) { return s * s * std::log1p((d * d) / (s * s))
 double robustLineCost(const CameraParams& p, const std::vector<ImagePx>& pixels,
                       const FieldLineModel& model, double gate_px, double loss_scale_px,
                       int* matched) {
-  const auto m = matchPixels(p, pixels, model, gate_px);
+  const auto m = matchLinePixels(p, pixels, model, gate_px);
   if (matched) *matched = int(m.size());
   if (m.empty()) return 1e300;
   // Unmatched pixels count as far away, so that sliding off the lines to
@@ -110,7 +107,7 @@ LineFitResult refineOnLines(const CameraParams& start, const std::vector<ImagePx
   const double cx0 = start.intrinsics[1], cy0 = start.intrinsics[2];
   for (double gate : o.gates_px) {
     for (int round = 0; round < 2; ++round) {
-      const auto matches = matchPixels(cp, pixels, model, gate);
+      const auto matches = matchLinePixels(cp, pixels, model, gate);
       if (matches.size() < 50) break;
       ceres::Problem problem;
       ceres::LossFunction* loss = new ceres::CauchyLoss(o.loss_scale_px);

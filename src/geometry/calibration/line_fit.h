@@ -43,6 +43,17 @@ LineFitResult refineOnLines(const CameraParams& start, const std::vector<ImagePx
                             const std::vector<PointCorrespondence>& points,
                             const LineFitOptions& options);
 
+struct LinePixelMatch {
+  ImagePx px;
+  int element;        // index into FieldLineModel::elements()
+  double mm_per_px;   // local scale on the field at this pixel
+  double distance_px;
+};
+// Line pixels within `gate_px` of the model, with their nearest element and
+// the local scale, for the given parameters.
+std::vector<LinePixelMatch> matchLinePixels(const CameraParams& p, const std::vector<ImagePx>& pixels,
+                                            const FieldLineModel& model, double gate_px);
+
 // Robust mean distance (px) of the line pixels within `gate_px` of the model;
 // the score refinements must not make worse. Also returns how many matched.
 double robustLineCost(const CameraParams& p, const std::vector<ImagePx>& line_pixels,
