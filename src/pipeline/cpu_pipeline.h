@@ -57,6 +57,8 @@ class CpuPipeline {
   cv::Mat debugRectified() const;
   cv::Mat debugGradient() const;
   cv::Mat debugScore() const;
+  // Raw blob score plane of the last frame (grid sized, row-major).
+  const float* scoreData() const;
 
  private:
   struct Impl;

@@ -14,7 +14,7 @@ struct PipelineOptions {
   double plane_height = 150;  // mm, rectification plane (max robot height)
   // Normalised blob score threshold: scores are chroma contrast relative to
   // local brightness, so one value serves every exposure and resolution.
-  double threshold = 0.02;
+  double threshold = 0.1;
   int max_blobs = 2000;
   int threads = 0;  // 0 = all cores
 };

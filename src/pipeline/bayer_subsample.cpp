@@ -1,0 +1,104 @@
+#include "pipeline/bayer_subsample.h"
+
+#include <algorithm>
+
+namespace dv {
+
+BayerSites bayerSites(BayerPattern pattern) {
+  switch (pattern) {
+    case BayerPattern::GRBG: return {1, 0, 0, 1};
+    case BayerPattern::GBRG: return {0, 1, 1, 0};
+    case BayerPattern::BGGR: return {1, 1, 0, 0};
+    case BayerPattern::RGGB:
+    case BayerPattern::None: break;
+  }
+  return {0, 0, 1, 1};
+}
+
+namespace {
+
+// Bilinear weights 9:3:3:1 (/16) move a sample a quarter cell in x and y.
+inline uint8_t quarterShift(int c, int nx, int ny, int nxy) {
+  return static_cast<uint8_t>((9 * c + 3 * nx + 3 * ny + nxy + 8) >> 4);
+}
+
+// One output row for the sites given at compile time, so the inner loop has
+// constant offsets the compiler can vectorise.
+template <int RX, int RY, int BX, int BY>
+__attribute__((target_clones("avx2", "default"))) void subsampleRow(
+    const uint8_t* r_row, const uint8_t* r_nrow, const uint8_t* b_row, const uint8_t* b_nrow,
+    const uint8_t* g_row0, const uint8_t* g_row1, int ws, uint8_t* out) {
+  // Red moves toward +x if it sits at column offset 0, else toward -x.
+  constexpr int rs = RX == 0 ? 2 : -2;
+  constexpr int bs = BX == 0 ? 2 : -2;
+  // Green sites: the two positions that are neither red nor blue; in every
+  // pattern they are (1-RX, RY) on the red row and (RX, 1-RY) on the other.
+  constexpr int g0x = 1 - RX, g1x = RX;
+  auto pixel = [&](int i, int rn, int bn) {
+    const int rc = 2 * i + RX, bc = 2 * i + BX;
+    uint8_t* o = out + 4 * i;
+    o[0] = quarterShift(r_row[rc], r_row[rn], r_nrow[rc], r_nrow[rn]);
+    o[1] = static_cast<uint8_t>((g_row0[2 * i + g0x] + g_row1[2 * i + g1x] + 1) >> 1);
+    o[2] = quarterShift(b_row[bc], b_row[bn], b_nrow[bc], b_nrow[bn]);
+    o[3] = 0;
+  };
+  // Borders: the neighbour across the image edge is the sample itself.
+  const int last = ws - 1;
+  for (int i : {0, last}) {
+    const int rn = std::clamp(2 * i + RX + rs, RX, 2 * last + RX);
+    const int bn = std::clamp(2 * i + BX + bs, BX, 2 * last + BX);
+    pixel(i, rn, bn);
+  }
+  for (int i = 1; i < last; ++i) {
+    const int rc = 2 * i + RX, bc = 2 * i + BX;
+    uint8_t* o = out + 4 * i;
+    o[0] = quarterShift(r_row[rc], r_row[rc + rs], r_nrow[rc], r_nrow[rc + rs]);
+    o[1] = static_cast<uint8_t>((g_row0[2 * i + g0x] + g_row1[2 * i + g1x] + 1) >> 1);
+    o[2] = quarterShift(b_row[bc], b_row[bc + bs], b_nrow[bc], b_nrow[bc + bs]);
+    o[3] = 0;
+  }
+}
+
+template <int RX, int RY, int BX, int BY>
+void subsampleRowsT(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end) {
+  const int ws = raw.cols / 2, hs = raw.rows / 2;
+  constexpr int rdy = RY == 0 ? 1 : -1;
+  constexpr int bdy = BY == 0 ? 1 : -1;
+  for (int j = row_begin; j < row_end; ++j) {
+    const int rj = std::clamp(j + rdy, 0, hs - 1), bj = std::clamp(j + bdy, 0, hs - 1);
+    subsampleRow<RX, RY, BX, BY>(raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * rj + RY),
+                                 raw.ptr<uint8_t>(2 * j + BY), raw.ptr<uint8_t>(2 * bj + BY),
+                                 raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * j + 1 - RY), ws,
+                                 rgbx + static_cast<size_t>(4) * ws * j);
+  }
+}
+
+}  // namespace
+
+void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx, int row_begin,
+                        int row_end) {
+  switch (pattern) {
+    case BayerPattern::GRBG: return subsampleRowsT<1, 0, 0, 1>(raw, rgbx, row_begin, row_end);
+    case BayerPattern::GBRG: return subsampleRowsT<0, 1, 1, 0>(raw, rgbx, row_begin, row_end);
+    case BayerPattern::BGGR: return subsampleRowsT<1, 1, 0, 0>(raw, rgbx, row_begin, row_end);
+    default: return subsampleRowsT<0, 0, 1, 1>(raw, rgbx, row_begin, row_end);
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void bgrToRgbxRows(const cv::Mat& raw,
+                                                                     uint8_t* rgbx,
+                                                                     int row_begin, int row_end) {
+  const int w = raw.cols;
+  for (int j = row_begin; j < row_end; ++j) {
+    const uint8_t* in = raw.ptr<uint8_t>(j);
+    uint8_t* o = rgbx + static_cast<size_t>(4) * w * j;
+    for (int i = 0; i < w; ++i) {
+      o[4 * i + 0] = in[3 * i + 2];
+      o[4 * i + 1] = in[3 * i + 1];
+      o[4 * i + 2] = in[3 * i + 0];
+      o[4 * i + 3] = 0;
+    }
+  }
+}
+
+}  // namespace dv

@@ -1,0 +1,30 @@
+#pragma once
+// Bayer 2x2 subsampling (thesis §5.2.3): each 2x2 cell becomes one RGB pixel.
+// Unlike plain subsampling, the red and blue samples (which sit a quarter
+// cell off the cell center, on opposite sides) are interpolated to the cell
+// center, so all three channels describe the same point (2i+0.5, 2j+0.5) in
+// full-image pixels. Without this, blue and red blobs shift by about half a
+// full pixel diagonally.
+#include <cstdint>
+#include <opencv2/core.hpp>
+
+#include "pipeline/pipeline_options.h"
+
+namespace dv {
+
+// raw: CV_8UC1 mosaic of even size. Writes rows [row_begin, row_end) of the
+// (cols/2) x (rows/2) RGBX image `rgbx` (4 bytes per pixel, X = 0).
+void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx, int row_begin,
+                        int row_end);
+
+// raw: CV_8UC3 BGR. Writes rows [row_begin, row_end) of the same-size RGBX image.
+void bgrToRgbxRows(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end);
+
+// Where the red and blue samples of a pattern sit inside the 2x2 cell
+// (x = column offset, y = row offset, each 0 or 1).
+struct BayerSites {
+  int rx, ry, bx, by;
+};
+BayerSites bayerSites(BayerPattern pattern);
+
+}  // namespace dv

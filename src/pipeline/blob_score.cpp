@@ -1,0 +1,91 @@
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "pipeline/kernels.h"
+
+namespace dv {
+
+__attribute__((target_clones("avx2", "default"))) void quadrantMinScoreRows(
+    const uint32_t* sat, int width, int height, int r, int q, float* score, int y_begin, int y_end) {
+  const size_t stride = static_cast<size_t>(width) + 1;
+  // 4 G cells per table cell (2x2 box sums).
+  const float norm = 1.0f / (4 * kGradientFixedPoint * (r * r - q * q));
+  const int m = r + 1;
+  for (int y = y_begin; y < y_end; ++y) {
+    float* out = score + static_cast<size_t>(y) * width;
+    if (y < m || y >= height - m || width <= 2 * m) {
+      std::memset(out, 0, sizeof(float) * width);
+      continue;
+    }
+    for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
+    // Table row t holds sums over box rows < t; box cell (x, y) sits at
+    // (x + 1/2, y + 1/2), so the quadrants of cell (x, y) are box columns
+    // [x-r, x) and [x, x+r), rows [y-r, y) and [y, y+r).
+    const uint32_t* s_top = sat + (y - r) * stride;
+    const uint32_t* s_mid = sat + y * stride;
+    const uint32_t* s_bot = sat + (y + r) * stride;
+    const uint32_t* s_itop = sat + (y - q) * stride;
+    const uint32_t* s_ibot = sat + (y + q) * stride;
+    for (int x = m; x < width - m; ++x) {
+      const uint32_t c = s_mid[x];
+      // Full quadrant minus its inner q x q corner at the center.
+      const int32_t tl = static_cast<int32_t>((c - s_top[x] - s_mid[x - r] + s_top[x - r]) -
+                                              (c - s_itop[x] - s_mid[x - q] + s_itop[x - q]));
+      const int32_t tr = static_cast<int32_t>((s_mid[x + r] - s_top[x + r] - c + s_top[x]) -
+                                              (s_mid[x + q] - s_itop[x + q] - c + s_itop[x]));
+      const int32_t bl = static_cast<int32_t>((s_bot[x] - c - s_bot[x - r] + s_mid[x - r]) -
+                                              (s_ibot[x] - c - s_ibot[x - q] + s_mid[x - q]));
+      const int32_t br = static_cast<int32_t>((s_bot[x + r] - s_mid[x + r] - s_bot[x] + c) -
+                                              (s_ibot[x + q] - s_mid[x + q] - s_ibot[x] + c));
+      const int32_t m1 = std::min(tl, br), m2 = std::min(-tr, -bl);
+      out[x] = static_cast<float>(std::min(m1, m2)) * norm;
+    }
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void circleMinScoreRows(
+    const uint32_t* row_prefix, int width, int height, double radius, float* score, int y_begin,
+    int y_end) {
+  const size_t stride = static_cast<size_t>(width) + 1;
+  const int rows = std::max(1, static_cast<int>(std::floor(radius + 0.5)));
+  // Half-widths of the quarter disc per row offset j = 1..rows: box cells at
+  // distance (i - 1/2, j - 1/2) from the cell center, i, j >= 1.
+  int half[64];
+  int count = 0;
+  const int nrows = std::min(rows, 63);
+  for (int j = 1; j <= nrows; ++j) {
+    const double dy = j - 0.5;
+    half[j] = static_cast<int>(std::floor(std::sqrt(std::max(0.0, radius * radius - dy * dy)) + 0.5));
+    count += half[j];
+  }
+  const float norm = 1.0f / (4 * kGradientFixedPoint * std::max(1, count));
+  const int m = nrows + 1;
+  for (int y = y_begin; y < y_end; ++y) {
+    float* out = score + static_cast<size_t>(y) * width;
+    if (y < m || y >= height - m || width <= 2 * m) {
+      std::memset(out, 0, sizeof(float) * width);
+      continue;
+    }
+    for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
+    for (int x = m; x < width - m; ++x) {
+      uint32_t tl = 0, tr = 0, bl = 0, br = 0;
+      for (int j = 1; j <= nrows; ++j) {
+        const int h = half[j];
+        if (h == 0) continue;
+        const uint32_t* up = row_prefix + (y - j + 1) * stride;  // box row y-j
+        const uint32_t* dn = row_prefix + (y + j) * stride;      // box row y+j-1
+        tl += up[x] - up[x - h];
+        tr += up[x + h] - up[x];
+        bl += dn[x] - dn[x - h];
+        br += dn[x + h] - dn[x];
+      }
+      const int32_t m1 = std::min(static_cast<int32_t>(tl), static_cast<int32_t>(br));
+      const int32_t m2 = std::min(-static_cast<int32_t>(tr), -static_cast<int32_t>(bl));
+      out[x] = static_cast<float>(std::min(m1, m2)) * norm;
+    }
+  }
+}
+
+}  // namespace dv

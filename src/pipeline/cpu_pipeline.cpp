@@ -1,0 +1,382 @@
+#include "pipeline/cpu_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/bayer_subsample.h"
+#include "pipeline/kernels.h"
+#include "pipeline/peak_select.h"
+#include "pipeline/remap_table.h"
+#include "pipeline/thread_pool.h"
+
+namespace dv {
+
+namespace {
+
+// Largest blob radius (center blob, thesis §5.2.7.3) and the radius over
+// which a blob's color is averaged: the side blob radius minus a margin for
+// blur and position error.
+constexpr double kMaxBlobRadiusMm = 25;
+constexpr double kColorRadiusMm = 13;
+// Inner corner of each quadrant left out of the score (see kernels.h).
+constexpr double kInnerCornerMm = 10;
+// Brightness normalisation: chroma / (luma + this fraction of the frame's
+// mean luma). The floor keeps noise on black robot tops from being amplified.
+constexpr float kLumaFloorFraction = 0.25f;
+// The reported score is the weakest quadrant's mean gradient dot product
+// divided by (mean gradient energy in the window + this floor). The ratio is
+// a shape measure: high for round blobs, low for lines, crossings and
+// corners, whose edges carry energy but little diagonal product. The floor
+// (in the luma-normalised chroma units, so independent of exposure) keeps
+// faint texture from reaching high ratios.
+constexpr float kEnergyFloor = 0.01f;
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+struct CpuPipeline::Impl {
+  CameraModel camera;
+  PipelineOptions opt;
+  RectifiedGrid grid;
+  ThreadPool pool;
+  RemapTable table;
+  ChromaTransform chroma;
+  int sample_step = 2;   // full pixels per RGBX sample
+  int image_w = 0, image_h = 0;
+  double gradient_scale = 1;  // cells
+  int quadrant_r = 1;         // cells
+  int inner_q = 0;            // cells, inner corner left out of each quadrant
+  double circle_r = 1;        // cells
+  int margin = 1;             // cells without a full score window
+  double color_radius = 1;    // cells
+
+  std::vector<uint8_t> rgbx;
+  std::vector<float> ca, cb, score;
+  std::vector<int32_t> gdot;
+  std::vector<uint32_t> sat;
+  std::vector<uint8_t> peak_mask;  // 1 where the whole window is seen by the camera
+  std::vector<std::vector<PeakCandidate>> candidates;  // one per pool part
+  std::vector<int> candidate_counts;
+  std::vector<PeakCandidate> merged;
+  float luma_floor = 10;
+  bool has_frame = false;
+
+  StageTimes times;
+  std::string error;
+
+  Impl(const CameraModel& cam, const FieldModel& field, const PipelineOptions& o)
+      : camera(cam), opt(o), pool(o.threads) {
+    const auto& c = camera.calibration();
+    image_w = static_cast<int>(c.image_width);
+    image_h = static_cast<int>(c.image_height);
+    const std::string source = "camera " + std::to_string(c.camera_id);
+    if (image_w <= 0 || image_h <= 0)
+      throw InputError(source, "calibration has no image size (pixel_image_width/height)");
+    if (opt.bayer != BayerPattern::None && (image_w % 2 || image_h % 2 || image_w < 4 || image_h < 4))
+      throw InputError(source, "Bayer image size " + std::to_string(image_w) + "x" +
+                                   std::to_string(image_h) + " is not even");
+    sample_step = opt.bayer == BayerPattern::None ? 1 : 2;
+    auto g = computeRectifiedGrid(camera, field, opt.plane_height, sample_step);
+    if (!g) throw InputError(source, "camera sees no part of the field at plane height " +
+                                         std::to_string(opt.plane_height) + " mm");
+    grid = *g;
+    if (grid.width < 8 || grid.height < 8 || static_cast<double>(grid.width) * grid.height > 64e6)
+      throw InputError(source, "rectified grid " + std::to_string(grid.width) + "x" +
+                                   std::to_string(grid.height) + " is unusable");
+    chroma = ChromaTransform::of(opt.color);
+    // Gradient scale 1/3 * ceil(25 mm / field scale) (thesis §5.2.7.4).
+    gradient_scale = std::ceil(kMaxBlobRadiusMm / grid.scale) / 3.0;
+    quadrant_r = std::max(2, static_cast<int>(std::lround(kMaxBlobRadiusMm / grid.scale)));
+    circle_r = std::max(2.0, kMaxBlobRadiusMm / grid.scale);
+    inner_q = std::clamp(static_cast<int>(std::lround(kInnerCornerMm / grid.scale)), 0, quadrant_r - 1);
+    const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(circle_r) : quadrant_r;
+    margin = window + static_cast<int>(std::floor(gradient_scale)) + 2;
+    color_radius = std::max(1.0, kColorRadiusMm / grid.scale);
+
+    table.build(camera, grid, opt.plane_height, sample_step, pool);
+
+    const size_t cells = static_cast<size_t>(grid.width) * grid.height;
+    rgbx.assign(static_cast<size_t>(4) * table.src_width * table.src_height, 0);
+    ca.assign(cells, 0);
+    cb.assign(cells, 0);
+    score.assign(cells, 0);
+    gdot.assign(cells, 0);
+    sat.assign(static_cast<size_t>(grid.width + 1) * (grid.height + 1), 0);
+
+    // A peak counts only where its whole window lies in the camera's view:
+    // erode the valid mask by the window reach.
+    cv::Mat valid(grid.height, grid.width, CV_8UC1, table.valid.data());
+    cv::Mat eroded;
+    cv::erode(valid, eroded, cv::getStructuringElement(cv::MORPH_RECT, {2 * margin + 1, 2 * margin + 1}),
+              {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+    peak_mask.assign(eroded.datastart, eroded.dataend);
+
+    const int parts = pool.size();
+    // Room for weak candidates that the ratio test removes afterwards.
+    const int capacity = 4 * std::max(16, opt.max_blobs);
+    candidates.assign(parts, std::vector<PeakCandidate>(capacity));
+    candidate_counts.assign(parts, 0);
+    merged.reserve(static_cast<size_t>(capacity) * parts);
+  }
+
+  // Splits rows [0, n) into one contiguous band per pool part and tells the
+  // body its part index.
+  template <class F>
+  void forParts(int n, F&& body) {
+    const int parts = pool.size();
+    pool.parallelFor(parts, [&](int pb, int pe) {
+      for (int p = pb; p < pe; ++p) {
+        const int b = static_cast<int>(static_cast<long>(n) * p / parts);
+        const int e = static_cast<int>(static_cast<long>(n) * (p + 1) / parts);
+        body(p, b, e);
+      }
+    });
+  }
+
+  bool checkFrame(const cv::Mat& raw) {
+    if (raw.empty()) {
+      error = "empty frame";
+      return false;
+    }
+    if (raw.cols != image_w || raw.rows != image_h) {
+      error = "frame is " + std::to_string(raw.cols) + "x" + std::to_string(raw.rows) +
+              ", calibration expects " + std::to_string(image_w) + "x" + std::to_string(image_h);
+      return false;
+    }
+    if (raw.depth() != CV_8U || (raw.channels() != 1 && raw.channels() != 3)) {
+      error = "frame type must be 8-bit Bayer (1 channel) or 8-bit BGR (3 channels)";
+      return false;
+    }
+    if (raw.channels() == 1 && opt.bayer == BayerPattern::None) {
+      error = "1-channel frame but the Bayer pattern is 'none'";
+      return false;
+    }
+    return true;
+  }
+
+  bool process(const cv::Mat& raw, BlobList& out) {
+    out.blobs.clear();
+    out.plane_height = opt.plane_height;
+    if (!checkFrame(raw)) return false;
+    const bool bayer = raw.channels() == 1;
+    if (bayer != (sample_step == 2)) {
+      // A BGR frame for a Bayer-configured camera: the sample grid differs.
+      error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
+      return false;
+    }
+    error.clear();
+    const auto t_start = std::chrono::steady_clock::now();
+    auto t0 = t_start;
+
+    const int hs = table.src_height;
+    if (bayer) {
+      pool.parallelFor(hs, [&](int b, int e) { subsampleBayerRows(raw, opt.bayer, rgbx.data(), b, e); });
+    } else {
+      pool.parallelFor(hs, [&](int b, int e) { bgrToRgbxRows(raw, rgbx.data(), b, e); });
+    }
+    times.bayer_ms = msSince(t0);
+
+    // Frame brightness for the normalisation floor (sparse sample).
+    t0 = std::chrono::steady_clock::now();
+    {
+      const int ws = table.src_width;
+      uint64_t sum = 0, n = 0;
+      for (int y = 0; y < hs; y += 16) {
+        const uint8_t* row = rgbx.data() + static_cast<size_t>(4) * ws * y;
+        for (int x = 0; x < ws; x += 4) sum += row[4 * x] + row[4 * x + 1] + row[4 * x + 2], n += 3;
+      }
+      luma_floor = kLumaFloorFraction * static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
+    }
+    times.color_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    const int gw = grid.width, gh = grid.height;
+    pool.parallelFor(gh, [&](int b, int e) {
+      rectifyChromaRows(table, rgbx.data(), chroma, luma_floor, ca.data(), cb.data(), b, e);
+    });
+    times.rectify_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    pool.parallelFor(gh, [&](int b, int e) {
+      gradientDotRows(ca.data(), cb.data(), gw, gh, gradient_scale, gdot.data(), b, e);
+    });
+    times.gradient_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
+    const bool circle = opt.score == BlobScoreKind::CircleMin;
+    if (!circle)
+      pool.parallelFor(gw + 1, [&](int b, int e) { satColumnPrefix(sat.data(), gw, gh, b, e); });
+    times.sat_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    if (circle) {
+      pool.parallelFor(gh, [&](int b, int e) {
+        circleMinScoreRows(sat.data(), gw, gh, circle_r, score.data(), b, e);
+      });
+    } else {
+      pool.parallelFor(gh, [&](int b, int e) {
+        quadrantMinScoreRows(sat.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e);
+      });
+    }
+    times.score_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    // Raw score > threshold * floor is necessary for ratio > threshold.
+    const float threshold = static_cast<float>(opt.threshold);
+    const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r))
+                                                             : quadrant_r;
+    forParts(gh, [&](int p, int b, int e) {
+      auto& list = candidates[p];
+      const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin,
+                                 threshold * kEnergyFloor, list.data(), 0,
+                                 static_cast<int>(list.size()), b, e);
+      int kept = 0;
+      for (int i = 0; i < n; ++i) {
+        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale,
+                                                  list[i].x, list[i].y, window);
+        const float ratio = list[i].score / (energy + kEnergyFloor);
+        if (ratio > threshold) list[kept++] = {list[i].x, list[i].y, ratio};
+      }
+      candidate_counts[p] = kept;
+    });
+    merged.clear();
+    for (size_t p = 0; p < candidates.size(); ++p)
+      merged.insert(merged.end(), candidates[p].begin(), candidates[p].begin() + candidate_counts[p]);
+    const size_t keep = std::min(merged.size(), static_cast<size_t>(std::max(0, opt.max_blobs)));
+    std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(),
+                      [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; });
+    for (size_t i = 0; i < keep; ++i) {
+      const auto& c = merged[i];
+      Blob blob;
+      blob.grid = interpolatePeak(score.data(), gw, c.x, c.y);
+      blob.position = grid.toField(blob.grid);
+      blob.score = c.score;
+      meanColor(blob.grid, blob.rgb);
+      out.blobs.push_back(blob);
+    }
+    times.peaks_ms = msSince(t0);
+    times.total_ms = msSince(t_start);
+    has_frame = true;
+    return true;
+  }
+
+  // Bilinear RGB of grid cell k from the RGBX image.
+  void sampleRgb(size_t k, float rgb[3]) const {
+    const uint32_t* src = reinterpret_cast<const uint32_t*>(rgbx.data());
+    const int i = table.index[k];
+    const int stride = table.src_width;
+    const float fx = (table.frac[k] & 255) / 256.0f, fy = (table.frac[k] >> 8) / 256.0f;
+    const uint32_t p[4] = {src[i], src[i + 1], src[i + stride], src[i + stride + 1]};
+    const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    for (int c = 0; c < 3; ++c) {
+      float v = 0;
+      for (int q = 0; q < 4; ++q) v += w[q] * ((p[q] >> (8 * c)) & 255);
+      rgb[c] = v;
+    }
+  }
+
+  void meanColor(GridPx g, float rgb[3]) const {
+    const double r = color_radius;
+    const int x0 = std::max(0, static_cast<int>(std::ceil(g.x - r)));
+    const int x1 = std::min(grid.width - 1, static_cast<int>(std::floor(g.x + r)));
+    const int y0 = std::max(0, static_cast<int>(std::ceil(g.y - r)));
+    const int y1 = std::min(grid.height - 1, static_cast<int>(std::floor(g.y + r)));
+    float sum[3] = {0, 0, 0};
+    int n = 0;
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        if ((x - g.x) * (x - g.x) + (y - g.y) * (y - g.y) > r * r) continue;
+        float c[3];
+        sampleRgb(static_cast<size_t>(y) * grid.width + x, c);
+        sum[0] += c[0], sum[1] += c[1], sum[2] += c[2];
+        ++n;
+      }
+    }
+    for (int c = 0; c < 3; ++c) rgb[c] = n ? sum[c] / n : 0;
+  }
+};
+
+CpuPipeline::CpuPipeline(const CameraModel& camera, const FieldModel& field,
+                         const PipelineOptions& opt)
+    : impl_(std::make_unique<Impl>(camera, field, opt)) {}
+CpuPipeline::~CpuPipeline() = default;
+CpuPipeline::CpuPipeline(CpuPipeline&&) noexcept = default;
+CpuPipeline& CpuPipeline::operator=(CpuPipeline&&) noexcept = default;
+
+bool CpuPipeline::process(const cv::Mat& raw, BlobList& out) { return impl_->process(raw, out); }
+const std::string& CpuPipeline::lastError() const { return impl_->error; }
+const float* CpuPipeline::scoreData() const { return impl_->score.data(); }
+const RectifiedGrid& CpuPipeline::grid() const { return impl_->grid; }
+const StageTimes& CpuPipeline::times() const { return impl_->times; }
+const PipelineOptions& CpuPipeline::options() const { return impl_->opt; }
+double CpuPipeline::gradientScale() const { return impl_->gradient_scale; }
+int CpuPipeline::quadrantRadius() const { return impl_->quadrant_r; }
+
+std::optional<ImagePx> CpuPipeline::gridToImage(GridPx g) const {
+  const FieldMm f = impl_->grid.toField(g);
+  return impl_->camera.fieldToImage({f.x, f.y, impl_->opt.plane_height});
+}
+
+cv::Mat CpuPipeline::debugRectified() const {
+  const auto& m = *impl_;
+  cv::Mat out(m.grid.height, m.grid.width, CV_8UC3, cv::Scalar(0, 0, 0));
+  if (!m.has_frame) return out;
+  for (int y = 0; y < out.rows; ++y) {
+    auto* row = out.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < out.cols; ++x) {
+      float c[3];
+      m.sampleRgb(static_cast<size_t>(y) * out.cols + x, c);
+      row[x] = cv::Vec3b(cv::saturate_cast<uint8_t>(c[2]), cv::saturate_cast<uint8_t>(c[1]),
+                         cv::saturate_cast<uint8_t>(c[0]));
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Signed plane -> gray with 0 at 128, +-full_scale at 255 / 0.
+template <class T>
+cv::Mat signedView(const T* data, int w, int h, double full_scale) {
+  cv::Mat out(h, w, CV_8UC1);
+  const double k = full_scale > 0 ? 127.0 / full_scale : 0;
+  for (int y = 0; y < h; ++y) {
+    auto* row = out.ptr<uint8_t>(y);
+    for (int x = 0; x < w; ++x)
+      row[x] = cv::saturate_cast<uint8_t>(128 + k * static_cast<double>(data[static_cast<size_t>(y) * w + x]));
+  }
+  return out;
+}
+
+}  // namespace
+
+cv::Mat CpuPipeline::debugGradient() const {
+  const auto& m = *impl_;
+  // Full scale at the 99.9th percentile of |G| so blobs stand out.
+  std::vector<int32_t> mags;
+  mags.reserve(m.gdot.size() / 7 + 1);
+  for (size_t i = 0; i < m.gdot.size(); i += 7) mags.push_back(std::abs(m.gdot[i]));
+  double full = 1;
+  if (!mags.empty()) {
+    auto it = mags.begin() + static_cast<long>(mags.size() * 0.999);
+    std::nth_element(mags.begin(), it, mags.end());
+    full = std::max(1, *it);
+  }
+  return signedView(m.gdot.data(), m.grid.width, m.grid.height, full);
+}
+
+cv::Mat CpuPipeline::debugScore() const {
+  const auto& m = *impl_;
+  // The threshold maps to a quarter of the range above 0.
+  return signedView(m.score.data(), m.grid.width, m.grid.height, 4 * m.opt.threshold);
+}
+
+}  // namespace dv

@@ -1,0 +1,71 @@
+#pragma once
+// Per-frame loops of the CPU pipeline, each over a range of rows so that the
+// thread pool can split them. No allocation, no exceptions.
+#include <cstdint>
+
+#include "pipeline/pipeline_options.h"
+#include "pipeline/remap_table.h"
+
+namespace dv {
+
+// Chroma transform applied to the interpolated color. Two channels suffice:
+// dRGB (R - (G+B)/2, ...) is 1.5 times the projection onto the plane normal
+// to gray, so its gradient dot product equals that of two orthonormal chroma
+// axes scaled by 1.5; YUV uses U and V (luma edges are what we suppress).
+struct ChromaTransform {
+  float a[3], b[3];
+  static ChromaTransform of(ColorSpace space);
+};
+
+// Rectify rows [y_begin, y_end) of the grid: bilinear RGB from `rgbx`, then
+// chroma divided by (luma + luma_floor) so the values are contrast relative
+// to local brightness. Writes planes ca, cb (grid sized, row-major).
+void rectifyChromaRows(const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t,
+                       float luma_floor, float* ca, float* cb, int y_begin, int y_end);
+
+// Color gradient dot product (thesis eq. 5.11, §5.2.7.1) at distance `scale`
+// cells (fractional distances interpolate linearly), summed over both chroma
+// channels, in fixed point (value * 2^14). Cells closer than the gradient
+// reach to the border are 0.
+constexpr float kGradientFixedPoint = 16384.0f;
+void gradientDotRows(const float* ca, const float* cb, int width, int height, double scale,
+                     int32_t* g, int y_begin, int y_end);
+
+// Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
+// (x, y), same gradient as gradientDotRows. Used only at peak candidates.
+float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
+                           int r);
+
+// Summed-area table (thesis A.3) in modular 32-bit arithmetic: a box sum is
+// exact whenever its true value fits in 32 bits, whatever the table values.
+// `sat` is (width+1) x (height+1), row 0 and column 0 zero.
+// The table sums the 2x2 box of G (sum of four cells), which puts table cell
+// (x, y) at position (x + 1/2, y + 1/2): quadrants around a grid cell then
+// meet on the cell's own row and column instead of leaving that row and
+// column out. A left-out row and column make the score flat within one cell
+// of the center, and quadratic interpolation on a flat top is biased.
+// Pass 1: row prefix sums of rows [y_begin, y_end).
+void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, int y_begin,
+                      int y_end);
+// Pass 2: column prefix over columns [x_begin, x_end) of the table.
+void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_end);
+
+// Minimum quadrant sum score (thesis eq. 5.15) with square quadrants of
+// `r` cells, from the summed-area table, divided by r^2 and the fixed point
+// (so the score is the mean G over the weakest quadrant).
+// Cells without a full window are 0.
+// The inner q x q corner of each quadrant (next to the center) is left out:
+// where two field lines cross, the gradient dot product forms the same
+// checkerboard as a blob, but only within about one gradient distance of the
+// crossing, while a blob's response lies on its rim. q = 0 keeps the thesis's
+// full quadrants.
+void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
+                          int y_begin, int y_end);
+
+// Exact circular quadrants of radius `radius` cells, from row prefix sums
+// (pass 1 only). Each quadrant is the quarter disc of the half-offset cells
+// whose centers lie within `radius`, divided by its cell count.
+void circleMinScoreRows(const uint32_t* row_prefix, int width, int height, double radius,
+                        float* score, int y_begin, int y_end);
+
+}  // namespace dv

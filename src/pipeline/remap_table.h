@@ -1,0 +1,73 @@
+#pragma once
+// Rectification (thesis §5.2.4): for every grid cell, where its field point
+// on the plane lies in the co-sited RGBX image, as a top-left sample index and
+// bilinear fractions. Computed once per camera geometry.
+#include <cstdint>
+#include <vector>
+
+#include "geometry/camera_model.h"
+#include "pipeline/rectified_grid.h"
+
+namespace dv {
+
+struct RemapTable {
+  int width = 0, height = 0;      // grid size
+  int src_width = 0, src_height = 0;  // RGBX image size
+  std::vector<int32_t> index;     // top-left sample: y0 * src_width + x0
+  std::vector<uint16_t> frac;     // fx | fy << 8, in 1/256 of a sample
+  std::vector<uint8_t> valid;     // 1 where the cell's point is seen by the camera
+
+  // sample_step: 2 for Bayer subsampling (sample (i, j) is centered on full
+  // pixel (2i + 0.5, 2j + 0.5)), 1 for full-resolution RGB.
+  template <class Pool>
+  void build(const CameraModel& camera, const RectifiedGrid& grid, double plane_height,
+             int sample_step, Pool& pool);
+};
+
+}  // namespace dv
+
+#include <algorithm>
+#include <cmath>
+
+namespace dv {
+
+template <class Pool>
+void RemapTable::build(const CameraModel& camera, const RectifiedGrid& grid, double plane_height,
+                       int sample_step, Pool& pool) {
+  width = grid.width;
+  height = grid.height;
+  const auto& c = camera.calibration();
+  src_width = static_cast<int>(c.image_width) / sample_step;
+  src_height = static_cast<int>(c.image_height) / sample_step;
+  const size_t n = static_cast<size_t>(width) * height;
+  index.assign(n, 0);
+  frac.assign(n, 0);
+  valid.assign(n, 0);
+  const double offset = sample_step == 2 ? 0.5 : 0.0;
+  pool.parallelFor(height, [&](int y_begin, int y_end) {
+    for (int y = y_begin; y < y_end; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const FieldMm f = grid.toField({static_cast<double>(x), static_cast<double>(y)});
+        const auto px = camera.fieldToImage({f.x, f.y, plane_height});
+        const size_t k = static_cast<size_t>(y) * width + x;
+        if (!px || !std::isfinite(px->u) || !std::isfinite(px->v)) continue;
+        double sx = (px->u - offset) / sample_step;
+        double sy = (px->v - offset) / sample_step;
+        valid[k] = sx >= 0 && sy >= 0 && sx <= src_width - 1 && sy <= src_height - 1;
+        // Outside the image: repeat the border sample (zero gradient there).
+        sx = std::clamp(sx, 0.0, src_width - 1.0);
+        sy = std::clamp(sy, 0.0, src_height - 1.0);
+        // Round to 1/256 sample first, then split into sample and fraction.
+        const long qx = std::lround(sx * 256), qy = std::lround(sy * 256);
+        int x0 = static_cast<int>(qx >> 8), fx = static_cast<int>(qx & 255);
+        int y0 = static_cast<int>(qy >> 8), fy = static_cast<int>(qy & 255);
+        if (x0 > src_width - 2) x0 = src_width - 2, fx = 255;
+        if (y0 > src_height - 2) y0 = src_height - 2, fy = 255;
+        index[k] = y0 * src_width + x0;
+        frac[k] = static_cast<uint16_t>(fx | (fy << 8));
+      }
+    }
+  });
+}
+
+}  // namespace dv
