@@ -22,11 +22,15 @@ namespace {
 // blur and position error.
 constexpr double kMaxBlobRadiusMm = 25;
 constexpr double kColorRadiusMm = 13;
+// Peaks closer than this belong to the same blob.
+constexpr double kMinBlobDistanceMm = 20;
 // Inner corner of each quadrant left out of the score (see kernels.h).
 constexpr double kInnerCornerMm = 10;
-// Brightness normalisation: chroma / (luma + this fraction of the frame's
-// mean luma). The floor keeps noise on black robot tops from being amplified.
-constexpr float kLumaFloorFraction = 0.25f;
+// Exposure normalisation: chroma is divided by the frame's mean brightness,
+// so a darker or brighter exposure gives the same values. (Dividing by each
+// cell's own brightness was tried: it lifts dark carpet against white lines
+// until line crossings score like blobs.) Local differences in light (sun
+// patches, shadows) are handled by the ratio score below.
 // The reported score is the weakest quadrant's mean gradient dot product
 // divided by (mean gradient energy in the window + this floor). The ratio is
 // a shape measure: high for round blobs, low for lines, crossings and
@@ -65,7 +69,7 @@ struct CpuPipeline::Impl {
   std::vector<std::vector<PeakCandidate>> candidates;  // one per pool part
   std::vector<int> candidate_counts;
   std::vector<PeakCandidate> merged;
-  float luma_floor = 10;
+  float luma_mean = 100;
   bool has_frame = false;
 
   StageTimes times;
@@ -183,7 +187,7 @@ struct CpuPipeline::Impl {
     }
     times.bayer_ms = msSince(t0);
 
-    // Frame brightness for the normalisation floor (sparse sample).
+    // Frame brightness for the exposure normalisation (sparse sample).
     t0 = std::chrono::steady_clock::now();
     {
       const int ws = table.src_width;
@@ -192,14 +196,14 @@ struct CpuPipeline::Impl {
         const uint8_t* row = rgbx.data() + static_cast<size_t>(4) * ws * y;
         for (int x = 0; x < ws; x += 4) sum += row[4 * x] + row[4 * x + 1] + row[4 * x + 2], n += 3;
       }
-      luma_floor = kLumaFloorFraction * static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
+      luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
     }
     times.color_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(table, rgbx.data(), chroma, luma_floor, ca.data(), cb.data(), b, e);
+      rectifyChromaRows(table, rgbx.data(), chroma, 1.0f / luma_mean, ca.data(), cb.data(), b, e);
     });
     times.rectify_ms = msSince(t0);
 
@@ -253,8 +257,21 @@ struct CpuPipeline::Impl {
     const size_t keep = std::min(merged.size(), static_cast<size_t>(std::max(0, opt.max_blobs)));
     std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(),
                       [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; });
+    // One blob per object: a weaker peak within kMinBlobDistanceMm of a
+    // stronger one is a second maximum of the same blob. Real blobs are at
+    // least ~43 mm apart (two touching balls).
+    const double min_d2 = std::pow(kMinBlobDistanceMm / grid.scale, 2);
     for (size_t i = 0; i < keep; ++i) {
       const auto& c = merged[i];
+      bool duplicate = false;
+      for (const auto& kept : out.blobs) {
+        const double dx = kept.grid.x - c.x, dy = kept.grid.y - c.y;
+        if (dx * dx + dy * dy < min_d2) {
+          duplicate = true;
+          break;
+        }
+      }
+      if (duplicate) continue;
       Blob blob;
       blob.grid = interpolatePeak(score.data(), gw, c.x, c.y);
       blob.position = grid.toField(blob.grid);

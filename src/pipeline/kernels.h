@@ -18,10 +18,10 @@ struct ChromaTransform {
 };
 
 // Rectify rows [y_begin, y_end) of the grid: bilinear RGB from `rgbx`, then
-// chroma divided by (luma + luma_floor) so the values are contrast relative
-// to local brightness. Writes planes ca, cb (grid sized, row-major).
+// chroma times `gain` (1 / frame brightness). Writes planes ca, cb (grid
+// sized, row-major).
 void rectifyChromaRows(const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t,
-                       float luma_floor, float* ca, float* cb, int y_begin, int y_end);
+                       float gain, float* ca, float* cb, int y_begin, int y_end);
 
 // Color gradient dot product (thesis eq. 5.11, §5.2.7.1) at distance `scale`
 // cells (fractional distances interpolate linearly), summed over both chroma

@@ -19,7 +19,7 @@ ChromaTransform ChromaTransform::of(ColorSpace space) {
 }
 
 __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
-    const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t, float luma_floor,
+    const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t, float gain,
     float* ca, float* cb, int y_begin, int y_end) {
   const int w = table.width;
   const int stride = table.src_width;
@@ -43,9 +43,8 @@ __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
                w10 * ((p10 >> shift) & 255) + w11 * ((p11 >> shift) & 255);
       };
       const float r = ch(0), g = ch(8), b = ch(16);
-      const float inv = 1.0f / ((r + g + b) * (1.0f / 3.0f) + luma_floor);
-      oa[x] = (a0 * r + a1 * g + a2 * b) * inv;
-      ob[x] = (b0 * r + b1 * g + b2 * b) * inv;
+      oa[x] = (a0 * r + a1 * g + a2 * b) * gain;
+      ob[x] = (b0 * r + b1 * g + b2 * b) * gain;
     }
   }
 }

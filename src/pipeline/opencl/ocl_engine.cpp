@@ -11,7 +11,7 @@ namespace dv {
 
 namespace {
 
-constexpr float kGradientFixedPoint = 65536.0f;  // as pipeline/kernels.h
+constexpr float kGradientFixedPoint = 16384.0f;  // as pipeline/kernels.h
 constexpr int kHeaderWords = 4;                  // DV_RESULT_HEADER in common.cl
 constexpr int kPeakWords = 6;                    // floats per OclPeak
 constexpr int kFirstPeaksRead = 256;             // peaks read with the counters
@@ -90,9 +90,11 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   const int64_t last = static_cast<int64_t>(src_width_) * src_height_ - src_width_ - 1;
   for (int32_t i : c.remap_index)
     if (i < 0 || i >= last) throw std::invalid_argument("OpenCL pipeline: remap index out of range");
-  const int window = c.circle_score ? std::max(1, static_cast<int>(std::floor(c.circle_radius)))
+  const int window = c.circle_score ? std::max(1, static_cast<int>(std::floor(c.circle_radius + 0.5)))
                                     : c.quadrant_radius;
-  if (c.quadrant_radius < 1 || c.margin < window + static_cast<int>(std::floor(c.gradient_scale)) + 2)
+  const int reach = static_cast<int>(std::floor(c.gradient_scale)) + 1;
+  if (c.quadrant_radius < 1 || c.inner_corner < 0 || c.inner_corner >= c.quadrant_radius ||
+      c.margin < std::max(window, c.energy_window) + reach)
     throw std::invalid_argument("OpenCL pipeline: margin smaller than the score window");
 
   frame_stride_ = c.bayer ? c.image_width : 3 * c.image_width;
@@ -141,15 +143,17 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   float circle_norm = 1;
   int circle_rows = 1;
   {
-    const int rows = std::max(1, static_cast<int>(std::floor(c.circle_radius)));
+    // As circleMinScoreRows: box cells at (i - 1/2, j - 1/2) from the center.
+    const int rows = std::max(1, static_cast<int>(std::floor(c.circle_radius + 0.5)));
     circle_rows = std::min(rows, 63);
     int count = 0;
     for (int j = 1; j <= circle_rows; ++j) {
+      const double dy = j - 0.5;
       half[j] = static_cast<int>(
-          std::floor(std::sqrt(std::max(0.0, c.circle_radius * c.circle_radius - j * j))));
+          std::floor(std::sqrt(std::max(0.0, c.circle_radius * c.circle_radius - dy * dy)) + 0.5));
       count += half[j];
     }
-    circle_norm = 1.0f / (kGradientFixedPoint * std::max(1, count));
+    circle_norm = 1.0f / (4 * kGradientFixedPoint * std::max(1, count));
   }
   b_->half = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof half, half, "circle");
 
@@ -220,10 +224,9 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   const cl_float4 cb = {{c.chroma_b[0], c.chroma_b[1], c.chroma_b[2], 0}};
   arg(b_->rectify, 6, sizeof ca, &ca);
   arg(b_->rectify, 7, sizeof cb, &cb);
-  argFloat(b_->rectify, 8, c.luma_floor_fraction);
-  argFloat(b_->rectify, 9, luma_count_);
-  argMem(b_->rectify, 10, b_->results);
-  argMem(b_->rectify, 11, b_->chroma);
+  argFloat(b_->rectify, 8, luma_count_);
+  argMem(b_->rectify, 9, b_->results);
+  argMem(b_->rectify, 10, b_->chroma);
 
   b_->gradient = ctx_->createKernel("gradient_dot");
   const int k = static_cast<int>(std::floor(c.gradient_scale));
@@ -240,8 +243,9 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   b_->sat_rows_local = floorPow2(std::min<size_t>(256, kernelMax(b_->sat_rows)));
   argMem(b_->sat_rows, 0, b_->gdot);
   argInt(b_->sat_rows, 1, c.grid_width);
-  argMem(b_->sat_rows, 2, b_->sat);
-  arg(b_->sat_rows, 3, b_->sat_rows_local * 4, nullptr);
+  argInt(b_->sat_rows, 2, c.grid_height);
+  argMem(b_->sat_rows, 3, b_->sat);
+  arg(b_->sat_rows, 4, b_->sat_rows_local * 4, nullptr);
 
   b_->sat_cols = ctx_->createKernel("sat_columns");
   {
@@ -265,13 +269,14 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     argMem(b_->score_k, 6, b_->score);
   } else {
     b_->score_k = ctx_->createKernel("score_quadrant_min");
-    const int r = c.quadrant_radius;
+    const int r = c.quadrant_radius, q = c.inner_corner;
     argMem(b_->score_k, 0, b_->sat);
     argInt(b_->score_k, 1, c.grid_width);
     argInt(b_->score_k, 2, c.grid_height);
     argInt(b_->score_k, 3, r);
-    argFloat(b_->score_k, 4, 1.0f / (kGradientFixedPoint * r * r));
-    argMem(b_->score_k, 5, b_->score);
+    argInt(b_->score_k, 4, q);
+    argFloat(b_->score_k, 5, 1.0f / (4 * kGradientFixedPoint * (r * r - q * q)));
+    argMem(b_->score_k, 6, b_->score);
   }
 
   b_->peaks = ctx_->createKernel("find_peaks");
@@ -280,19 +285,26 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argInt(b_->peaks, 2, c.grid_width);
   argInt(b_->peaks, 3, c.grid_height);
   argInt(b_->peaks, 4, c.margin);
-  argFloat(b_->peaks, 5, c.threshold);
-  argMem(b_->peaks, 6, b_->rgbx);
-  argInt(b_->peaks, 7, ws);
-  argMem(b_->peaks, 8, b_->remap_index);
-  argMem(b_->peaks, 9, b_->remap_frac);
+  argFloat(b_->peaks, 5, c.threshold * c.energy_floor);  // ratio > t needs raw > t * floor
+  argFloat(b_->peaks, 6, c.threshold);
+  argMem(b_->peaks, 7, b_->chroma);
+  argInt(b_->peaks, 8, k);
+  argFloat(b_->peaks, 9, a);
+  argFloat(b_->peaks, 10, na);
+  argInt(b_->peaks, 11, c.energy_window);
+  argFloat(b_->peaks, 12, c.energy_floor);
+  argMem(b_->peaks, 13, b_->rgbx);
+  argInt(b_->peaks, 14, ws);
+  argMem(b_->peaks, 15, b_->remap_index);
+  argMem(b_->peaks, 16, b_->remap_frac);
   if (fp64_) {
     const double r = c.color_radius;
-    arg(b_->peaks, 10, sizeof r, &r);
+    arg(b_->peaks, 17, sizeof r, &r);
   } else {
-    argFloat(b_->peaks, 10, static_cast<float>(c.color_radius));
+    argFloat(b_->peaks, 17, static_cast<float>(c.color_radius));
   }
-  argMem(b_->peaks, 11, b_->results);
-  argInt(b_->peaks, 12, capacity_);
+  argMem(b_->peaks, 18, b_->results);
+  argInt(b_->peaks, 19, capacity_);
 
   size_t pixel_max = std::min(kernelMax(b_->rectify), kernelMax(b_->gradient));
   pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), size_t{256}});
@@ -399,7 +411,7 @@ bool OclEngine::run() {
                                 res + kHeaderWords + first * kPeakWords, 0, nullptr,
                                 &ev[Buffers::kDownload2])) != CL_SUCCESS)
     return fail("peak list download", st);
-  std::memcpy(&last_luma_floor_, &res[2], sizeof(float));
+  std::memcpy(&last_luma_mean_, &res[2], sizeof(float));
 
   const auto* found = reinterpret_cast<const OclPeak*>(res + kHeaderWords);
   peaks_.assign(found, found + n);
@@ -474,6 +486,6 @@ std::vector<uint32_t> OclEngine::readSat() const {
 std::vector<float> OclEngine::readScore() const {
   return readAll<float>(ctx_->queue(), b_->score, 1ull * cfg_.grid_width * cfg_.grid_height);
 }
-float OclEngine::lastLumaFloor() const { return last_luma_floor_; }
+float OclEngine::lastLumaMean() const { return last_luma_mean_; }
 
 }  // namespace dv

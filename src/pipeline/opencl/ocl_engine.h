@@ -32,14 +32,16 @@ struct OclEngineConfig {
   std::vector<uint8_t> peak_mask;  // 1 where a peak may be reported
 
   float chroma_a[3] = {0, 0, 0}, chroma_b[3] = {0, 0, 0};
-  float luma_floor_fraction = 0.25f;
   double gradient_scale = 1;  // cells
   bool circle_score = false;
   int quadrant_radius = 2;    // cells (quadrant score)
+  int inner_corner = 0;       // cells, inner corner left out of each quadrant
   double circle_radius = 2;   // cells (circle score)
+  int energy_window = 2;      // cells, half-size of the gradient energy window
+  float energy_floor = 0.01f; // added to the energy before the score ratio
   int margin = 4;             // cells next to the border that never hold a peak
   double color_radius = 1;    // cells, disc of the mean blob color
-  float threshold = 0.02f;
+  float threshold = 0.1f;  // on the ratio; raw scores must exceed threshold * energy_floor
   int max_blobs = 2000;
 
   // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
@@ -96,7 +98,7 @@ class OclEngine {
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
   std::vector<float> readScore() const;
-  float lastLumaFloor() const;                // needs the sum: read before the next run
+  float lastLumaMean() const;                 // frame brightness used by the last frame
 
   // Only the upload of one frame (for comparison with the end-to-end time).
   double timeUploadOnly();
@@ -120,7 +122,7 @@ class OclEngine {
   int peaks_found_ = 0;
   OclStageTimes times_;
   std::string error_;
-  float last_luma_floor_ = 0;
+  float last_luma_mean_ = 0;
 };
 
 }  // namespace dv
