@@ -5,5 +5,12 @@
 // peaks back in one transfer.
 #define DV_RESULT_PEAK_COUNT 0
 #define DV_RESULT_LUMA_SUM 1
-#define DV_RESULT_LUMA_FLOOR 2
+#define DV_RESULT_LUMA_MEAN 2
 #define DV_RESULT_HEADER 4
+
+// The gradient dot product's fixed point (pipeline/kernels.h).
+#define DV_GRADIENT_FIXED_POINT 16384.0f
+
+#ifdef DV_TEST_BUILD_FAILURE
+#error "build failure requested by a test (DV_TEST_BUILD_FAILURE)"
+#endif

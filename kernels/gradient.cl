@@ -1,7 +1,7 @@
 // Stage 3: color gradient dot product (thesis eq. 5.11, §5.2.7), as
 // pipeline/gradient_dot.cpp: gradients `k + a` cells apart (fractional
 // distances interpolate linearly), gx*gy summed over both chroma channels,
-// stored in fixed point (x 65536, round to nearest even) so that the
+// stored in fixed point (x 16384, round to nearest even) so that the
 // summed-area table is exact integer arithmetic. Cells within the gradient
 // reach of the border are 0.
 #pragma OPENCL FP_CONTRACT OFF
@@ -24,5 +24,5 @@ __kernel void gradient_dot(__global const float2* chroma, int width, int height,
   const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
   const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
   const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
-  gdot[y * w + x] = convert_int_rte((gxa * gya + gxb * gyb) * 65536.0f);
+  gdot[y * w + x] = convert_int_rte((gxa * gya + gxb * gyb) * DV_GRADIENT_FIXED_POINT);
 }

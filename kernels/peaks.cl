@@ -1,8 +1,10 @@
 // Stage 6: blob selection (thesis §5.2.8, §5.2.9), as pipeline/peak_select.cpp
-// and CpuPipeline's mean color: 4-way local peaks above the threshold (strict
-// on the left/top, non-strict on the right/bottom, so a plateau gives one
-// peak) where the peak mask allows, quadratic peak interpolation, and the mean
-// bilinear RGB over the disc of `color_radius` cells. Peaks are appended to a
+// and CpuPipeline: 4-way local peaks of the raw score above `raw_threshold`
+// (strict on the left/top, non-strict on the right/bottom, so a plateau gives
+// one peak) where the peak mask allows; their reported score is the ratio of
+// the raw score to (mean gradient energy in the window + floor), kept above
+// `threshold`; then quadratic peak interpolation on the raw score and the
+// mean bilinear RGB over the disc of `color_radius` cells. Peaks are appended to a
 // compact list (after the counters of the results buffer) through an
 // atomic counter; the host orders them by score.
 #pragma OPENCL FP_CONTRACT OFF
@@ -24,8 +26,34 @@ inline float dv_peak_offset(float l, float c, float r) {
   return clamp(0.5f * (l - r) / d, -0.5f, 0.5f);
 }
 
+// Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 window,
+// the same gradient as gradient_dot (pipeline/gradient_dot.cpp,
+// windowGradientEnergy; summed in double there, and here where available).
+inline float dv_window_energy(__global const float2* chroma, int width, int k, float a, float na,
+                              int x, int y, int r) {
+  const size_t w = width;
+  dv_real sum = 0;
+  for (int yy = y - r; yy <= y + r; ++yy) {
+    __global const float2* mid = chroma + yy * w;
+    for (int xx = x - r; xx <= x + r; ++xx) {
+      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
+      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
+      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
+      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
+      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
+      sum += (dv_real)0.5 * (dv_real)(gxa * gxa + gya * gya);
+      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
+      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
+      sum += (dv_real)0.5 * (dv_real)(gxb * gxb + gyb * gyb);
+    }
+  }
+  return (float)(sum / ((2 * r + 1) * (2 * r + 1)));
+}
+
 __kernel void find_peaks(__global const float* score, __global const uchar* mask, int width,
-                         int height, int margin, float threshold, __global const uchar4* rgbx,
+                         int height, int margin, float raw_threshold, float threshold,
+                         __global const float2* chroma, int k, float a, float na, int window,
+                         float energy_floor, __global const uchar4* rgbx,
                          int src_width, __global const int* remap_index,
                          __global const ushort* remap_frac, dv_real color_radius,
                          __global uint* results, int capacity) {
@@ -33,11 +61,14 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   // The brightness sum was consumed by the rectify stage; clear it for the next frame.
   if (x == 0 && y == 0) results[DV_RESULT_LUMA_SUM] = 0u;
   if (x < margin || y < margin || x >= width - margin || y >= height - margin) return;
-  const size_t k = (size_t)y * width + x;
-  const float c = score[k];
-  if (!(c > threshold)) return;
-  const float l = score[k - 1], rt = score[k + 1], up = score[k - width], dn = score[k + width];
-  if (!(c > l && c >= rt && c > up && c >= dn && mask[k])) return;
+  const size_t cell = (size_t)y * width + x;
+  const float c = score[cell];
+  if (!(c > raw_threshold)) return;
+  const float l = score[cell - 1], rt = score[cell + 1], up = score[cell - width], dn = score[cell + width];
+  if (!(c > l && c >= rt && c > up && c >= dn && mask[cell])) return;
+  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window);
+  const float ratio = c / (energy + energy_floor);
+  if (!(ratio > threshold)) return;
   const uint slot = atomic_inc(&results[DV_RESULT_PEAK_COUNT]);
   if (slot >= (uint)capacity) return;
 
@@ -69,7 +100,7 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   dv_peak p;
   p.x = gx;
   p.y = gy;
-  p.score = c;
+  p.score = ratio;
   p.r = n ? sum_r / n : 0.0f;
   p.g = n ? sum_g / n : 0.0f;
   p.b = n ? sum_b / n : 0.0f;

@@ -1,7 +1,7 @@
 // Stage 2: rectification through the remap table (thesis §5.2.4) fused with
 // the chroma transform (§5.2.5), as pipeline/rectify_color.cpp: bilinear RGB
-// at 1/256-sample fractions, then two chroma channels divided by
-// (luma + floor), the floor being a fraction of the frame's mean brightness.
+// at 1/256-sample fractions, then two chroma channels divided by the frame's
+// mean brightness (exposure normalisation; the sum comes from the Bayer stage).
 // Float operations are written in the CPU reference's order and contraction
 // into FMA is off, so the results agree to the last bit where division is
 // correctly rounded.
@@ -10,17 +10,17 @@
 __kernel void rectify_chroma(__global const uchar4* rgbx, int src_width,
                              __global const int* remap_index, __global const ushort* remap_frac,
                              int width, int height, float4 chroma_a, float4 chroma_b,
-                             float luma_floor_fraction, float luma_count,
+                             float luma_count,
                              __global uint* results, __global float2* chroma) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
-  const float luma_floor =
-      luma_floor_fraction * convert_float(results[DV_RESULT_LUMA_SUM]) / luma_count + 1.0f;
+  const float luma_mean = convert_float(results[DV_RESULT_LUMA_SUM]) / luma_count + 1.0f;
+  const float gain = 1.0f / luma_mean;
   if (x == 0 && y == 0) {
     // Peak extraction of this frame runs later in the same queue: reset its
-    // counter; keep the floor for inspection.
+    // counter; keep the mean for inspection.
     results[DV_RESULT_PEAK_COUNT] = 0u;
-    results[DV_RESULT_LUMA_FLOOR] = as_uint(luma_floor);
+    results[DV_RESULT_LUMA_MEAN] = as_uint(luma_mean);
   }
   const size_t k = (size_t)y * width + x;
   const int i = remap_index[k];
@@ -32,7 +32,6 @@ __kernel void rectify_chroma(__global const uchar4* rgbx, int src_width,
   const float r = w00 * p00.x + w01 * p01.x + w10 * p10.x + w11 * p11.x;
   const float g = w00 * p00.y + w01 * p01.y + w10 * p10.y + w11 * p11.y;
   const float b = w00 * p00.z + w01 * p01.z + w10 * p10.z + w11 * p11.z;
-  const float inv = 1.0f / ((r + g + b) * (1.0f / 3.0f) + luma_floor);
-  chroma[k] = (float2)((chroma_a.x * r + chroma_a.y * g + chroma_a.z * b) * inv,
-                       (chroma_b.x * r + chroma_b.y * g + chroma_b.z * b) * inv);
+  chroma[k] = (float2)((chroma_a.x * r + chroma_a.y * g + chroma_a.z * b) * gain,
+                       (chroma_b.x * r + chroma_b.y * g + chroma_b.z * b) * gain);
 }

@@ -1,0 +1,168 @@
+#include "pipeline/opencl/opencl_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "pipeline/bayer_subsample.h"
+#include "pipeline/kernels.h"
+#include "pipeline/remap_table.h"
+#include "pipeline/thread_pool.h"
+
+namespace dv {
+
+namespace {
+
+// The CPU reference's constants (cpu_pipeline.cpp): largest blob radius, the
+// radius of the mean blob color, the inner quadrant corner left out of the
+// score and the energy floor of the score ratio.
+constexpr double kMaxBlobRadiusMm = 25;
+constexpr double kColorRadiusMm = 13;
+constexpr double kInnerCornerMm = 10;
+constexpr float kEnergyFloor = 0.01f;
+
+}  // namespace
+
+OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& field,
+                               const PipelineOptions& opt, const OclDeviceInfo& device)
+    : camera_(camera), opt_(opt) {
+  const auto& c = camera_.calibration();
+  const int image_w = static_cast<int>(c.image_width), image_h = static_cast<int>(c.image_height);
+  const std::string source = "camera " + std::to_string(c.camera_id);
+  if (image_w <= 0 || image_h <= 0)
+    throw InputError(source, "calibration has no image size (pixel_image_width/height)");
+  if (opt_.bayer != BayerPattern::None && (image_w % 2 || image_h % 2 || image_w < 4 || image_h < 4))
+    throw InputError(source, "Bayer image size " + std::to_string(image_w) + "x" + std::to_string(image_h) +
+                                 " is not even");
+  const int sample_step = opt_.bayer == BayerPattern::None ? 1 : 2;
+  auto g = computeRectifiedGrid(camera_, field, opt_.plane_height, sample_step);
+  if (!g)
+    throw InputError(source, "camera sees no part of the field at plane height " +
+                                 std::to_string(opt_.plane_height) + " mm");
+  grid_ = *g;
+  if (grid_.width < 8 || grid_.height < 8 || static_cast<double>(grid_.width) * grid_.height > 64e6)
+    throw InputError(source, "rectified grid " + std::to_string(grid_.width) + "x" +
+                                 std::to_string(grid_.height) + " is unusable");
+
+  OclEngineConfig cfg;
+  cfg.image_width = image_w;
+  cfg.image_height = image_h;
+  cfg.bayer = opt_.bayer != BayerPattern::None;
+  const BayerSites sites = bayerSites(opt_.bayer);
+  cfg.red_x = sites.rx, cfg.red_y = sites.ry, cfg.blue_x = sites.bx, cfg.blue_y = sites.by;
+  cfg.grid_width = grid_.width;
+  cfg.grid_height = grid_.height;
+
+  // Same formulas as CpuPipeline.
+  cfg.gradient_scale = std::ceil(kMaxBlobRadiusMm / grid_.scale) / 3.0;
+  cfg.quadrant_radius = std::max(2, static_cast<int>(std::lround(kMaxBlobRadiusMm / grid_.scale)));
+  cfg.circle_radius = std::max(2.0, kMaxBlobRadiusMm / grid_.scale);
+  cfg.inner_corner =
+      std::clamp(static_cast<int>(std::lround(kInnerCornerMm / grid_.scale)), 0, cfg.quadrant_radius - 1);
+  cfg.circle_score = opt_.score == BlobScoreKind::CircleMin;
+  const int window = cfg.circle_score ? static_cast<int>(cfg.circle_radius) : cfg.quadrant_radius;
+  cfg.margin = window + static_cast<int>(std::floor(cfg.gradient_scale)) + 2;
+  cfg.energy_window = cfg.circle_score ? static_cast<int>(std::lround(cfg.circle_radius)) : cfg.quadrant_radius;
+  cfg.energy_floor = kEnergyFloor;
+  cfg.color_radius = std::max(1.0, kColorRadiusMm / grid_.scale);
+  cfg.threshold = static_cast<float>(opt_.threshold);
+  cfg.max_blobs = opt_.max_blobs;
+  const ChromaTransform chroma = ChromaTransform::of(opt_.color);
+  std::copy(chroma.a, chroma.a + 3, cfg.chroma_a);
+  std::copy(chroma.b, chroma.b + 3, cfg.chroma_b);
+
+  // The remap table through the CPU reference's own builder.
+  {
+    ThreadPool pool(opt_.threads);
+    RemapTable table;
+    table.build(camera_, grid_, opt_.plane_height, sample_step, pool);
+    cfg.remap_index = std::move(table.index);
+    cfg.remap_frac = std::move(table.frac);
+    // A peak counts only where its whole window is seen (as the CPU reference).
+    cv::Mat valid(grid_.height, grid_.width, CV_8UC1, table.valid.data());
+    cv::Mat eroded;
+    cv::erode(valid, eroded,
+              cv::getStructuringElement(cv::MORPH_RECT, {2 * cfg.margin + 1, 2 * cfg.margin + 1}), {-1, -1}, 1,
+              cv::BORDER_CONSTANT, 0);
+    cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
+  }
+  engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
+}
+
+OpenClPipeline::~OpenClPipeline() = default;
+
+std::string OpenClPipeline::name() const { return "opencl " + engine_->context().device().device_name; }
+
+std::optional<ImagePx> OpenClPipeline::gridToImage(GridPx g) const {
+  const FieldMm f = grid_.toField(g);
+  return camera_.fieldToImage({f.x, f.y, opt_.plane_height});
+}
+
+bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
+  out.blobs.clear();
+  out.plane_height = opt_.plane_height;
+  const auto& cfg = engine_->config();
+  // The same checks and messages as the CPU reference.
+  if (raw.empty()) {
+    error_ = "empty frame";
+    return false;
+  }
+  if (raw.cols != cfg.image_width || raw.rows != cfg.image_height) {
+    error_ = "frame is " + std::to_string(raw.cols) + "x" + std::to_string(raw.rows) +
+             ", calibration expects " + std::to_string(cfg.image_width) + "x" + std::to_string(cfg.image_height);
+    return false;
+  }
+  if (raw.depth() != CV_8U || (raw.channels() != 1 && raw.channels() != 3)) {
+    error_ = "frame type must be 8-bit Bayer (1 channel) or 8-bit BGR (3 channels)";
+    return false;
+  }
+  if (raw.channels() == 1 && opt_.bayer == BayerPattern::None) {
+    error_ = "1-channel frame but the Bayer pattern is 'none'";
+    return false;
+  }
+  const bool bayer = raw.channels() == 1;
+  if (bayer != cfg.bayer) {
+    error_ = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
+    return false;
+  }
+  error_.clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  uint8_t* dst = engine_->frameBuffer();
+  if (!dst) {
+    error_ = engine_->error();
+    return false;
+  }
+  const size_t row_bytes = static_cast<size_t>(engine_->frameStride());
+  if (raw.isContinuous()) {
+    std::memcpy(dst, raw.data, row_bytes * raw.rows);
+  } else {
+    for (int y = 0; y < raw.rows; ++y) std::memcpy(dst + row_bytes * y, raw.ptr(y), row_bytes);
+  }
+  if (!engine_->run()) {
+    error_ = engine_->error();
+    return false;
+  }
+  for (const auto& p : engine_->peaks()) {
+    Blob b;
+    b.grid = {p.x, p.y};
+    b.position = grid_.toField(b.grid);
+    b.score = p.score;
+    b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
+    out.blobs.push_back(b);
+  }
+  const auto& t = engine_->times();
+  times_.bayer_ms = t.bayer_ms;
+  times_.rectify_ms = t.rectify_ms;  // fused with the chroma transform
+  times_.color_ms = 0;
+  times_.gradient_ms = t.gradient_ms;
+  times_.sat_ms = t.sat_ms;
+  times_.score_ms = t.score_ms;
+  times_.peaks_ms = t.peaks_ms + t.download_ms;
+  times_.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+}  // namespace dv
