@@ -90,6 +90,18 @@ TEST(CalibrationInput, WrongCornerOrderFailsTheQualityGate) {
   ASSERT_TRUE(out.problem.has_value());
 }
 
+// Looking straight down, the height is not observable: without it the
+// calibration is refused with a request for --camera-height.
+TEST(CalibrationInput, StraightDownWithoutHeightAsksForIt) {
+  const FieldModel f = FieldModel::divisionB();
+  const cv::Mat img = testing::renderFieldImage(topDown(), f);
+  auto req = cornersFor(topDown(), f);
+  req.camera_height_mm.reset();
+  const auto out = calibrateCamera(img, f, req);
+  ASSERT_TRUE(out.problem.has_value());
+  EXPECT_NE(out.problem->find("--camera-height"), std::string::npos) << *out.problem;
+}
+
 // A correct calibration passes the gate; the same one moved by 60 mm fails.
 TEST(CalibrationQuality, GateSeparatesRightFromShifted) {
   const FieldModel f = FieldModel::divisionB();

@@ -1,6 +1,9 @@
 #include "geometry/calibration/calibrate_camera.h"
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "geometry/calibration/auto_extrinsics.h"
@@ -59,6 +62,23 @@ void finish(CalibrationOutcome& r, const LineObservation& obs, const FieldModel&
   r.problem = qualityProblem(r.calibration, r.measures, g);
 }
 
+// A camera looking (nearly) straight down sees the field the same from any
+// height with the focal length scaled along (thesis §5.1.3); without the
+// height its positions above the carpet would be guesses.
+std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool height_given) {
+  if (height_given) return std::nullopt;
+  const CameraModel cam(c);
+  const Eigen::Vector3d axis = cam.rotation().transpose() * Eigen::Vector3d(0, 0, 1);
+  const double tilt_deg = std::acos(std::clamp(-axis.z(), -1.0, 1.0)) * 180 / kPi;
+  if (tilt_deg >= 12) return std::nullopt;
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "the camera looks nearly straight down (%.1f deg), so its height cannot be observed; "
+                "give --camera-height",
+                tilt_deg);
+  return std::string(buf);
+}
+
 }  // namespace
 
 CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
@@ -101,6 +121,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
     r.refinement_accepted = fit.improved;
     r.calibration = fit.params.toCalibration(req.camera_id, w, h);
     finish(r, obs, field, region, bgr);
+    if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
     return r;
   }
 
@@ -116,6 +137,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
   r.refinement_accepted = true;
   r.calibration = found.params->toCalibration(req.camera_id, w, h);
   finish(r, obs, field, region, bgr);
+  if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
   if (r.problem)
     r.problem = "cannot decide the camera pose from the lines alone (" + *r.problem +
                 "); give four points with --corners or --point";
