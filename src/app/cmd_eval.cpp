@@ -1,15 +1,63 @@
-// Placeholder until the eval subcommand is built: says so and exits non-zero.
+// `dotvision eval`: scores detections (JSONL or SSL log) against truth JSONL,
+// per camera and overall; `--json` prints one JSON object for machines.
 #include <cstdio>
+#include <memory>
+#include <string>
 
 #include "app/commands.h"
+#include "core/error.h"
+#include "eval/detection_files.h"
+#include "eval/metrics.h"
 
 namespace dv::app {
 
+namespace {
+
+struct EvalArgs {
+  std::string truth;
+  std::string detections;
+  bool json = false;
+  MatchOptions match;
+};
+
+}  // namespace
+
 CommandFn addEvalCommand(CLI::App& root) {
-  root.add_subcommand("eval", "eval (not built yet)");
-  return [] {
-    std::fprintf(stderr, "dotvision eval: not built yet\n");
-    return kExitUnfinished;
+  auto args = std::make_shared<EvalArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "eval",
+      "Score detections against ground truth: robot recall/precision (same team and id within "
+      "60 mm), team-only recall, ID accuracy, ball recall/precision (within 50 mm), position and "
+      "orientation errors, false positives per frame; per camera and overall.");
+  cmd->add_option("--truth", args->truth,
+                  "truth JSONL: one canonical-JSON SSL_DetectionFrame per line")
+      ->required();
+  cmd->add_option("--detections", args->detections,
+                  "detections: JSONL of SSL_WrapperPacket (as `run --jsonl` writes) or an SSL log "
+                  "file (as `run --record` writes)")
+      ->required();
+  cmd->add_flag("--json", args->json, "print the report as one JSON object");
+  cmd->add_option("--robot-radius", args->match.robot_radius_mm,
+                  "robot match radius in mm (default 60)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--ball-radius", args->match.ball_radius_mm,
+                  "ball match radius in mm (default 50)")
+      ->check(CLI::PositiveNumber);
+
+  return [args] {
+    const DetectionFile truth = readTruthJsonl(args->truth);
+    const DetectionFile detections = readDetectionFile(args->detections);
+    for (const std::string& w : truth.warnings) std::fprintf(stderr, "dotvision eval: warning: %s\n", w.c_str());
+    for (const std::string& w : detections.warnings)
+      std::fprintf(stderr, "dotvision eval: warning: %s\n", w.c_str());
+    if (truth.frames.empty()) throw InputError(args->truth, "holds no truth frames");
+    const EvalReport report = evaluate(truth.frames, detections.frames, args->match);
+    if (args->json) {
+      std::printf("%s\n", reportJson(report).c_str());
+    } else {
+      std::printf("%s", formatReport(report).c_str());
+    }
+    return kExitOk;
   };
 }
 

@@ -1,15 +1,409 @@
-// Placeholder until the run subcommand is built: says so and exits non-zero.
+// `dotvision run`: frames from a source (images, video, or the built-in
+// synthetic scene) -> pixel pipeline -> detector -> SSL_DetectionFrame,
+// multicast on the league's vision port and optionally recorded (SSL log,
+// JSONL). Ends at the end of the source with a short summary; on the
+// synthetic scene it also compares with the scene's truth.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
+#include "app/camera_processor.h"
 #include "app/commands.h"
+#include "app/debug_views.h"
+#include "core/error.h"
+#include "dotvision/ssl_wrapper.pb.h"
+#include "eval/metrics.h"
+#include "geometry/geometry_io.h"
+#include "geometry/proto_json.h"
+#include "io/detection_frame.h"
+#include "io/frame_source.h"
+#include "io/ssl_log.h"
+#include "net/multicast.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
 
 namespace dv::app {
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double wallSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+struct RunArgs {
+  std::string source;
+  std::string geometry;
+  std::optional<uint32_t> camera_id;
+  std::string scene;
+  std::string bayer = "rggb";
+  double fps = 60;
+  std::string record;
+  std::string jsonl;
+  bool no_publish = false;
+  std::string multicast_group = "224.5.23.2";
+  uint16_t multicast_port = 10006;
+  std::string multicast_interface;
+  std::string debug_dir;
+  long debug_frame = 0;
+  int threads = 0;
+  long max_frames = -1;
+  bool quiet = false;
+};
+
+// Where detections go: multicast, SSL log, JSONL. Geometry goes to the first
+// two as well (SSL-Vision sends it every 3 s), so a log is self-contained.
+class Outputs {
+ public:
+  Outputs(const RunArgs& a, const ssl::SSL_GeometryData& geometry) {
+    geometry_packet_.set_source(ssl::SSL_SOURCE_OTHER);
+    *geometry_packet_.mutable_geometry() = geometry;
+    if (!a.no_publish) {
+      try {
+        sender_ = std::make_unique<MulticastSender>(a.multicast_group, a.multicast_port,
+                                                    a.multicast_interface);
+      } catch (const InputError& e) {
+        // Without an explicit interface a missing multicast route must not
+        // stop local work (recording, evaluation); with one it is an error.
+        if (!a.multicast_interface.empty()) throw;
+        std::fprintf(stderr, "dotvision run: warning: not publishing: %s\n", e.what());
+      }
+    }
+    if (!a.record.empty()) log_ = std::make_unique<SslLogWriter>(a.record);
+    if (!a.jsonl.empty()) {
+      jsonl_.open(a.jsonl, std::ios::trunc);
+      if (!jsonl_) throw InputError(a.jsonl, "cannot open for writing");
+      jsonl_path_ = a.jsonl;
+    }
+    sendGeometry();
+  }
+
+  void detection(const ssl::SSL_WrapperPacket& packet) {
+    if (sender_ || log_) packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
+    if (sender_) {
+      if (!sender_->send(buffer_)) ++send_failures_;
+      if (wallSeconds() - last_geometry_ >= 3.0) sendGeometry();
+    }
+    if (log_) log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
+    if (jsonl_.is_open()) {
+      jsonl_ << toCanonicalJson(packet) << '\n';
+      if (!jsonl_) throw InputError(jsonl_path_, "write failed");
+    }
+  }
+
+  void finish() {
+    if (log_) log_->close();
+    if (jsonl_.is_open()) {
+      jsonl_.close();
+      if (jsonl_.fail()) throw InputError(jsonl_path_, "write failed at close");
+    }
+  }
+
+  std::string describe(const RunArgs& a) const {
+    std::string out;
+    if (sender_)
+      out += "published " + std::to_string(sender_->sentCount()) + " packets to " + sender_->name() +
+             (send_failures_ ? " (" + std::to_string(send_failures_) + " failed)" : "");
+    else
+      out += "not published";
+    if (log_) out += "; recorded " + a.record;
+    if (jsonl_path_.size()) out += "; JSONL " + a.jsonl;
+    return out;
+  }
+
+ private:
+  static int64_t nowNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+  void sendGeometry() {
+    last_geometry_ = wallSeconds();
+    geometry_packet_.SerializeToString(&buffer_);
+    if (sender_ && !sender_->send(buffer_)) ++send_failures_;
+    if (log_) log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
+  }
+
+  std::unique_ptr<MulticastSender> sender_;
+  std::unique_ptr<SslLogWriter> log_;
+  std::ofstream jsonl_;
+  std::string jsonl_path_;
+  ssl::SSL_WrapperPacket geometry_packet_;
+  std::string buffer_;
+  double last_geometry_ = 0;
+  uint64_t send_failures_ = 0;
+};
+
+// One camera: its processor (built on the first frame, whose size and pixel
+// format it then expects), reused detections and packet, and statistics.
+struct Channel {
+  CameraCalibration calibration;
+  std::optional<CameraProcessor> processor;
+  Detections detections;
+  ssl::SSL_WrapperPacket packet;
+  long processed = 0;
+  long robots = 0;
+  long balls = 0;
+  std::vector<double> pipeline_ms, detection_ms, total_ms;
+};
+
+struct RunState {
+  const RunArgs& args;
+  FieldModel field;
+  ProcessorOptions options;
+  Outputs& outputs;
+  std::vector<SkipRecord> skipped;
+  Metrics truth_metrics;
+  bool have_truth = false;
+  std::vector<std::string> debug_written;
+};
+
+void reportSkip(RunState& s, const std::string& name, const std::string& reason) {
+  std::fprintf(stderr, "dotvision run: skipped %s: %s\n", name.c_str(), reason.c_str());
+  s.skipped.push_back({name, reason});
+}
+
+// Processes one frame of one camera; false if the frame was skipped.
+bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
+  const auto started = Clock::now();
+  if (!ch.processor) {
+    CameraCalibration c = ch.calibration;
+    if (c.image_width == 0 || c.image_height == 0) {  // geometry without image size: take the frame's
+      c.image_width = static_cast<uint32_t>(frame.image.cols);
+      c.image_height = static_cast<uint32_t>(frame.image.rows);
+    }
+    ProcessorOptions o = s.options;
+    o.pipeline.bayer = bayerPatternOf(frame.format);
+    ch.processor.emplace(c, s.field, o);
+    const size_t expect = static_cast<size_t>(std::max(16L, s.args.max_frames));
+    ch.pipeline_ms.reserve(expect);
+    ch.detection_ms.reserve(expect);
+    ch.total_ms.reserve(expect);
+  }
+  std::string why;
+  if (!ch.processor->process(frame, ch.detections, why)) {
+    reportSkip(s, frame.name, why);
+    return false;
+  }
+  FrameStamp stamp;
+  stamp.camera_id = ch.calibration.camera_id;
+  stamp.frame_number = frame.index;
+  stamp.t_capture = frame.t_capture;
+  stamp.t_sent = frame.t_capture + std::chrono::duration<double>(Clock::now() - started).count();
+  fillDetectionPacket(ch.detections, stamp, ch.packet);
+  s.outputs.detection(ch.packet);
+
+  ++ch.processed;
+  ch.robots += static_cast<long>(ch.detections.robots.size());
+  ch.balls += static_cast<long>(ch.detections.balls.size());
+  ch.pipeline_ms.push_back(ch.processor->lastPipelineMs());
+  ch.detection_ms.push_back(ch.processor->lastDetectionMs());
+  ch.total_ms.push_back(ch.processor->lastPipelineMs() + ch.processor->lastDetectionMs());
+
+  if (!s.args.debug_dir.empty() && static_cast<long>(frame.index) == s.args.debug_frame) {
+    auto written = writeDebugViews(s.args.debug_dir, stamp.camera_id, frame, *ch.processor, ch.detections);
+    s.debug_written.insert(s.debug_written.end(), written.begin(), written.end());
+  }
+  return true;
+}
+
+void printSummary(const RunState& s, const std::string& what, const std::vector<Channel>& channels) {
+  long processed = 0, robots = 0, balls = 0;
+  std::vector<double> pipe, det, total;
+  for (const Channel& c : channels) {
+    processed += c.processed;
+    robots += c.robots;
+    balls += c.balls;
+    pipe.insert(pipe.end(), c.pipeline_ms.begin(), c.pipeline_ms.end());
+    det.insert(det.end(), c.detection_ms.begin(), c.detection_ms.end());
+    total.insert(total.end(), c.total_ms.begin(), c.total_ms.end());
+  }
+  const double per = processed > 0 ? 1.0 / processed : 0;
+  std::printf("dotvision run: %s\n", what.c_str());
+  std::printf("  frames: %ld processed, %zu skipped\n", processed, s.skipped.size());
+  std::printf("  detections: %ld robots (%.2f per frame), %ld balls (%.2f per frame)\n", robots,
+              robots * per, balls, balls * per);
+  if (!total.empty()) {
+    std::printf("  time per frame: pipeline median %.2f ms, detection median %.2f ms, "
+                "total median %.2f ms, p99 %.2f ms\n",
+                percentile(pipe, 0.5), percentile(det, 0.5), percentile(total, 0.5),
+                percentile(total, 0.99));
+  }
+  if (s.have_truth) {
+    const Metrics& m = s.truth_metrics;
+    const ErrorStats pos = errorStats(m.robot_position_errors_mm);
+    const ErrorStats ori = errorStats(m.robot_orientation_errors_rad);
+    const ErrorStats bpos = errorStats(m.ball_position_errors_mm);
+    std::printf("  vs truth: robots recall %.3f, precision %.3f (team recall %.3f, id accuracy %.3f), "
+                "position error median %.1f mm / p95 %.1f mm, orientation error median %.3f rad\n",
+                m.robotRecall(), m.robotPrecision(), m.teamRecall(), m.idAccuracy(), pos.median,
+                pos.p95, ori.median);
+    std::printf("            balls recall %.3f, precision %.3f, position error median %.1f mm; "
+                "false positives %.2f per frame\n",
+                m.ballRecall(), m.ballPrecision(), bpos.median, m.falsePositivesPerFrame());
+  }
+  std::printf("  output: %s\n", s.outputs.describe(s.args).c_str());
+  if (!s.debug_written.empty())
+    std::printf("  debug views: %zu images in %s\n", s.debug_written.size(), s.args.debug_dir.c_str());
+  if (!s.skipped.empty()) {
+    std::printf("  skipped frames:\n");
+    const size_t show = std::min<size_t>(s.skipped.size(), 20);
+    for (size_t i = 0; i < show; ++i)
+      std::printf("    %s: %s\n", s.skipped[i].name.c_str(), s.skipped[i].reason.c_str());
+    if (show < s.skipped.size()) std::printf("    ... and %zu more\n", s.skipped.size() - show);
+  }
+}
+
+std::string cameraIds(const Geometry& g) {
+  std::string out;
+  for (const auto& c : g.cameras) out += (out.empty() ? "" : ", ") + std::to_string(c.camera_id);
+  return out.empty() ? "none" : out;
+}
+
+int runOnSource(const RunArgs& a) {
+  if (a.geometry.empty())
+    throw InputError("command line", "--source needs --geometry (SSL_GeometryData as canonical JSON)");
+  const Geometry geometry = loadGeometry(a.geometry);
+  const CameraCalibration* calibration = nullptr;
+  if (a.camera_id) {
+    calibration = geometry.camera(*a.camera_id);
+    if (!calibration)
+      throw InputError(a.geometry, "no calibration for camera id " + std::to_string(*a.camera_id) +
+                                       " (calibrations present: " + cameraIds(geometry) + ")");
+  } else if (geometry.cameras.size() == 1) {
+    calibration = &geometry.cameras.front();
+  } else {
+    throw InputError("command line", "--camera-id is needed: " + a.geometry + " has calibrations for cameras " +
+                                         cameraIds(geometry));
+  }
+  FrameSourceOptions so;
+  so.fps = a.fps;
+  so.bayer = bayerFormatFromName(a.bayer, "--bayer");
+  std::unique_ptr<FrameSource> source = openFrameSource(a.source, so);
+
+  Outputs outputs(a, toProto(geometry));
+  RunState state{a, geometry.field, {}, outputs, {}, {}, false, {}};
+  state.options.pipeline.threads = a.threads;
+  std::vector<Channel> channels(1);
+  channels[0].calibration = *calibration;
+
+  Frame frame;
+  size_t source_skips_seen = 0;
+  long frames = 0;
+  while (a.max_frames < 0 || frames < a.max_frames) {
+    const bool more = source->next(frame);
+    for (; source_skips_seen < source->skipped().size(); ++source_skips_seen)
+      reportSkip(state, source->skipped()[source_skips_seen].name, source->skipped()[source_skips_seen].reason);
+    if (!more) break;
+    ++frames;
+    processFrame(state, channels[0], frame);
+  }
+  outputs.finish();
+  printSummary(state, source->describe() + ", camera " + std::to_string(calibration->camera_id), channels);
+  if (channels[0].processed == 0) {
+    std::fprintf(stderr, "dotvision run: %s: no frame could be processed\n", a.source.c_str());
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
+int runSynthetic(const RunArgs& a) {
+  SceneSpec spec = a.scene.empty() ? defaultScene()
+                   : (a.scene.find('/') != std::string::npos || a.scene.find('.') != std::string::npos)
+                       ? loadScene(a.scene)
+                       : presetScene(a.scene);
+  if (a.max_frames >= 0) spec.frames = static_cast<int>(std::min<long>(spec.frames, a.max_frames));
+  const Renderer renderer(spec);
+  const Geometry geometry = renderer.geometry();
+
+  std::vector<size_t> camera_indices;
+  for (size_t i = 0; i < spec.cameras.size(); ++i)
+    if (!a.camera_id || spec.cameras[i].calib.camera_id == *a.camera_id) camera_indices.push_back(i);
+  if (camera_indices.empty())
+    throw InputError("scene '" + spec.name + "'", "has no camera with id " + std::to_string(*a.camera_id) +
+                                                     " (cameras: " + cameraIds(geometry) + ")");
+
+  Outputs outputs(a, toProto(geometry));
+  RunState state{a, geometry.field, {}, outputs, {}, {}, true, {}};
+  state.options.pipeline.threads = a.threads;
+  std::vector<Channel> channels(camera_indices.size());
+  for (size_t k = 0; k < camera_indices.size(); ++k)
+    channels[k].calibration = spec.cameras[camera_indices[k]].calib;
+
+  const MatchOptions match;
+  Frame frame;
+  frame.format = spec.bayer ? PixelFormat::BayerRggb8 : PixelFormat::Bgr8;
+  for (int n = 0; n < spec.frames; ++n) {
+    for (size_t k = 0; k < camera_indices.size(); ++k) {
+      RenderedFrame rendered = renderer.render(n, camera_indices[k]);
+      frame.image = rendered.image;
+      frame.index = static_cast<uint32_t>(n);
+      frame.t_capture = n / spec.fps;
+      frame.name = "scene '" + spec.name + "' camera " + std::to_string(channels[k].calibration.camera_id) +
+                   " frame " + std::to_string(n);
+      const bool ok = processFrame(state, channels[k], frame);
+      scoreFrame(rendered.truth, ok ? &channels[k].packet.detection() : nullptr, match, state.truth_metrics);
+    }
+  }
+  outputs.finish();
+  std::string cams;
+  for (const Channel& c : channels) cams += (cams.empty() ? "" : ", ") + std::to_string(c.calibration.camera_id);
+  printSummary(state,
+               "synthetic scene '" + spec.name + "' (" + std::to_string(spec.frames) + " frames, camera " +
+                   cams + ", " + std::to_string(spec.cameras[camera_indices[0]].calib.image_width) + "x" +
+                   std::to_string(spec.cameras[camera_indices[0]].calib.image_height) +
+                   (spec.bayer ? " Bayer" : " RGB") + ")",
+               channels);
+  return kExitOk;
+}
+
+}  // namespace
+
 CommandFn addRunCommand(CLI::App& root) {
-  root.add_subcommand("run", "run (not built yet)");
-  return [] {
-    std::fprintf(stderr, "dotvision run: not built yet\n");
-    return kExitUnfinished;
+  auto a = std::make_shared<RunArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "run",
+      "Detect robots and balls in a camera's frames and publish them as SSL_DetectionFrame. "
+      "Without --source it runs on the built-in synthetic scene and compares with its truth.");
+  cmd->add_option("--source", a->source,
+                  "image file, directory of images, quoted glob ('dir/frame_0_*.pgm') or video file. "
+                  "Color images are RGB; 8-bit single-channel images are Bayer mosaics");
+  cmd->add_option("--geometry", a->geometry, "SSL_GeometryData as canonical JSON (or YAML)");
+  cmd->add_option("--camera-id", a->camera_id, "camera id whose calibration is used");
+  cmd->add_option("--scene", a->scene,
+                  "without --source: a scene YAML file or preset name instead of the built-in scene");
+  cmd->add_option("--bayer", a->bayer, "Bayer layout of single-channel images: rggb|grbg|gbrg|bggr")
+      ->default_str("rggb");
+  cmd->add_option("--fps", a->fps, "frame rate for image sequence timestamps (index / fps)")
+      ->default_str("60")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--record", a->record, "also write the packets to this SSL log file (.gz: compressed)");
+  cmd->add_option("--jsonl", a->jsonl, "also write one canonical-JSON SSL_WrapperPacket per line here");
+  cmd->add_flag("--no-publish", a->no_publish, "do not multicast the packets");
+  cmd->add_option("--multicast-group", a->multicast_group, "vision multicast group")
+      ->default_str("224.5.23.2");
+  cmd->add_option("--multicast-port", a->multicast_port, "vision multicast port")->default_str("10006");
+  cmd->add_option("--multicast-interface", a->multicast_interface,
+                  "local IPv4 address of the interface to publish on (default: by route)");
+  cmd->add_option("--debug-dir", a->debug_dir, "write the inspection views of one frame here");
+  cmd->add_option("--debug-frame", a->debug_frame, "index of the frame to inspect (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", a->threads, "pipeline threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-frames", a->max_frames, "stop after this many frames")->check(CLI::NonNegativeNumber);
+
+  return [a] {
+    // Validate the Bayer name up front so a typo fails before any work.
+    bayerFormatFromName(a->bayer, "--bayer");
+    if (!a->source.empty()) return runOnSource(*a);
+    if (!a->geometry.empty())
+      throw InputError("command line", "--geometry is only used with --source (the synthetic scene has its own)");
+    return runSynthetic(*a);
   };
 }
 

@@ -145,9 +145,11 @@ bool ImageSequenceSource::next(Frame& f) {
       continue;
     }
     const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, file_bytes_.data());
-    cv::Mat& decoded = decoded_;
+    // A fresh Mat: on failure OpenCV leaves a passed-in target untouched,
+    // which would hand out the previous image as this one.
+    cv::Mat decoded;
     try {
-      cv::imdecode(bytes, cv::IMREAD_UNCHANGED, &decoded);
+      decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception& e) {
       recordSkip(path, std::string("cannot decode the image: ") + e.what());
       continue;
@@ -162,11 +164,11 @@ bool ImageSequenceSource::next(Frame& f) {
     }
     switch (decoded.channels()) {
       case 1:
-        decoded.copyTo(f.image);
+        f.image = decoded;
         f.format = options_.bayer;
         break;
       case 3:
-        decoded.copyTo(f.image);
+        f.image = decoded;
         f.format = PixelFormat::Bgr8;
         break;
       case 4:

@@ -28,7 +28,7 @@ const char* pixelFormatName(PixelFormat f);
 PixelFormat bayerFormatFromName(const std::string& text, const std::string& source);
 
 struct Frame {
-  cv::Mat image;            // reused between frames; Bgr8 or one Bayer layout
+  cv::Mat image;            // Bgr8 or one Bayer layout; video reuses the buffer
   PixelFormat format = PixelFormat::Bgr8;
   double t_capture = 0;     // s: sequence time (index / fps) or container time
   uint32_t index = 0;       // position in the source, counting every input incl. skipped ones
@@ -85,7 +85,6 @@ class ImageSequenceSource : public FrameSource {
   std::string description_;
   size_t cursor_ = 0;
   std::vector<unsigned char> file_bytes_;  // reused read buffer
-  cv::Mat decoded_;                         // reused decode target
 };
 
 // A video file decoded by OpenCV (FFmpeg backend). Timestamps come from the

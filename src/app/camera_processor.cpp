@@ -1,0 +1,48 @@
+#include "app/camera_processor.h"
+
+#include <chrono>
+
+namespace dv::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+}  // namespace
+
+BayerPattern bayerPatternOf(PixelFormat format) {
+  switch (format) {
+    case PixelFormat::Bgr8: return BayerPattern::None;
+    case PixelFormat::BayerRggb8: return BayerPattern::RGGB;
+    case PixelFormat::BayerGrbg8: return BayerPattern::GRBG;
+    case PixelFormat::BayerGbrg8: return BayerPattern::GBRG;
+    case PixelFormat::BayerBggr8: return BayerPattern::BGGR;
+  }
+  return BayerPattern::RGGB;
+}
+
+CameraProcessor::CameraProcessor(const CameraCalibration& calibration, const FieldModel& field,
+                                 const ProcessorOptions& options)
+    : camera_(calibration),
+      pipeline_(camera_, field, options.pipeline),
+      detector_(camera_, field, options.detector) {}
+
+bool CameraProcessor::process(const Frame& frame, Detections& out, std::string& why) {
+  const auto t0 = Clock::now();
+  const bool ok = pipeline_.process(frame.image, blobs_);
+  const auto t1 = Clock::now();
+  pipeline_ms_ = msBetween(t0, t1);
+  if (!ok) {
+    why = pipeline_.lastError();
+    out.balls.clear();
+    out.robots.clear();
+    detection_ms_ = 0;
+    return false;
+  }
+  detector_.process(blobs_, frame.t_capture, out);
+  detection_ms_ = msBetween(t1, Clock::now());
+  return true;
+}
+
+}  // namespace dv::app

@@ -1,0 +1,225 @@
+// The `run`, `eval` and `bench` command contract, exercised through the built
+// binary on real files: exit codes, outputs, and one clear message per bad
+// input (naming the file or frame) while the run goes on where it can.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "dotvision/ssl_wrapper.pb.h"
+#include "eval/detection_files.h"
+#include "geometry/proto_json.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string l;
+  while (std::getline(ss, l))
+    if (!l.empty()) out.push_back(l);
+  return out;
+}
+
+class CliRun : public ::testing::Test {
+ protected:
+  // One rendered scene for the whole suite: 3 frames of the built-in scene.
+  static void SetUpTestSuite() {
+    scene_dir_ = fs::temp_directory_path() / ("dv_cli_run_" + std::to_string(::getpid()));
+    fs::remove_all(scene_dir_);
+    SceneSpec spec = defaultScene();
+    spec.frames = 3;
+    writeScene(spec, scene_dir_.string());
+  }
+  static void TearDownTestSuite() { fs::remove_all(scene_dir_); }
+
+  void SetUp() override {
+    dir_ = scene_dir_ / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::create_directories(dir_);
+  }
+
+  static std::string scene(const std::string& name) { return (scene_dir_ / name).string(); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  CliResult cli(const std::string& args) const {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string("'") + DV_CLI_PATH + "' " + args + " >'" + out.string() +
+                            "' 2>'" + err.string() + "'";
+    const int status = std::system(cmd.c_str());
+    CliResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readAll(out);
+    r.err = readAll(err);
+    return r;
+  }
+
+  static inline fs::path scene_dir_;
+  fs::path dir_;
+};
+
+TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
+  const CliResult r = cli("run --source '" + scene("frame_0_*.pgm") + "' --geometry " + scene("geometry.json") +
+                          " --camera-id 0 --jsonl " + path("det.jsonl") + " --record " + path("det.log") +
+                          " --no-publish");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("3 processed, 0 skipped"), std::string::npos) << r.out;
+
+  const auto jl = lines(readAll(path("det.jsonl")));
+  ASSERT_EQ(jl.size(), 3u);
+  for (size_t i = 0; i < jl.size(); ++i) {
+    ssl::SSL_WrapperPacket p;
+    parseCanonicalJson(jl[i], p, "det.jsonl");
+    ASSERT_TRUE(p.has_detection());
+    EXPECT_EQ(p.detection().frame_number(), i);
+    EXPECT_EQ(p.detection().camera_id(), 0u);
+    EXPECT_NEAR(p.detection().t_capture(), i / 60.0, 1e-9);
+    EXPECT_GE(p.detection().t_sent(), p.detection().t_capture());
+  }
+  const DetectionFile log = readDetectionFile(path("det.log"));
+  EXPECT_EQ(log.frames.size(), 3u);
+  EXPECT_TRUE(log.warnings.empty());
+
+  // The recorded detections score against the scene's truth.
+  const CliResult e = cli("eval --truth " + scene("truth.jsonl") + " --detections " + path("det.log") + " --json");
+  ASSERT_EQ(e.code, 0) << e.err;
+  const auto j = nlohmann::json::parse(e.out);
+  EXPECT_EQ(j["overall"]["frames"].get<long>(), 3);
+  EXPECT_EQ(j["overall"]["frames_missing"].get<long>(), 0);
+  EXPECT_GT(j["overall"]["robots"]["truth"].get<long>(), 0);
+  EXPECT_TRUE(j["per_camera"].contains("0"));
+}
+
+TEST_F(CliRun, BadFramesAreSkippedNamedAndSummarised) {
+  fs::create_directories(path("seq"));
+  fs::copy_file(scene("frame_0_00000.pgm"), path("seq/a.pgm"));
+  cv::imwrite(path("seq/b.png"), cv::Mat(100, 120, CV_8UC3, cv::Scalar(1, 2, 3)));  // wrong size
+  fs::copy_file(scene("frame_0_00001.pgm"), path("seq/c.pgm"));
+  fs::resize_file(path("seq/c.pgm"), fs::file_size(path("seq/c.pgm")) / 2);  // truncated
+  std::ofstream(path("seq/d.jpg")) << "not a jpeg at all";
+  fs::copy_file(scene("frame_0_00002.pgm"), path("seq/e.pgm"));
+  const CliResult r = cli("run --source " + path("seq") + " --geometry " + scene("geometry.json") +
+                          " --camera-id 0 --jsonl " + path("det.jsonl") + " --no-publish");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 processed, 3 skipped"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("b.png"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("120x100"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("c.pgm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("d.jpg"), std::string::npos) << r.err;
+  const auto jl = lines(readAll(path("det.jsonl")));
+  ASSERT_EQ(jl.size(), 2u);
+  ssl::SSL_WrapperPacket last;
+  parseCanonicalJson(jl[1], last, "det.jsonl");
+  EXPECT_EQ(last.detection().frame_number(), 4u);  // the source position, skipped ones counted
+}
+
+TEST_F(CliRun, MissingCameraIdInGeometryIsOneClearError) {
+  const CliResult r = cli("run --source " + scene("frame_0_00000.pgm") + " --geometry " + scene("geometry.json") +
+                          " --camera-id 7 --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("geometry.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("camera id 7"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+}
+
+TEST_F(CliRun, UnreadableVideoAndMissingSourceAreInputErrors) {
+  std::ofstream(path("clip.mp4")) << "garbage";
+  CliResult r = cli("run --source " + path("clip.mp4") + " --geometry " + scene("geometry.json") +
+                    " --camera-id 0 --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("clip.mp4"), std::string::npos) << r.err;
+  r = cli("run --source " + path("nothing_here") + " --geometry " + scene("geometry.json") + " --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("nothing_here"), std::string::npos) << r.err;
+  r = cli("run --source " + scene("frame_0_00000.pgm") + " --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--geometry"), std::string::npos) << r.err;
+}
+
+TEST_F(CliRun, UnknownOptionsAndBadValuesExitTwo) {
+  CliResult r = cli("run --frobnicate");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("frobnicate"), std::string::npos) << r.err;
+  r = cli("run --source " + scene("frame_0_00000.pgm") + " --geometry " + scene("geometry.json") +
+          " --bayer rgbg --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("rgbg"), std::string::npos) << r.err;
+  r = cli("eval --truth " + scene("truth.jsonl"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--detections"), std::string::npos) << r.err;
+  r = cli("bench --iterations 0");
+  EXPECT_EQ(r.code, 2);
+}
+
+TEST_F(CliRun, EvalNamesTheBadLineAndWarnsAboutATruncatedLog) {
+  std::ofstream(path("truth.jsonl")) << readAll(scene("truth.jsonl")) << "{\"frameNumber\": \n";
+  CliResult r = cli("eval --truth " + path("truth.jsonl") + " --detections " + scene("truth.jsonl"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(path("truth.jsonl") + ":4"), std::string::npos) << r.err;
+
+  ASSERT_EQ(cli("run --source '" + scene("frame_0_*.pgm") + "' --geometry " + scene("geometry.json") +
+                " --record " + path("det.log") + " --no-publish")
+                .code,
+            0);
+  fs::resize_file(path("det.log"), fs::file_size(path("det.log")) - 5);
+  r = cli("eval --truth " + scene("truth.jsonl") + " --detections " + path("det.log"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("det.log"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("overall: 3 frames (1 without detections)"), std::string::npos) << r.out;
+}
+
+TEST_F(CliRun, DebugViewsAreWritten) {
+  const CliResult r = cli("run --source '" + scene("frame_0_*.pgm") + "' --geometry " + scene("geometry.json") +
+                          " --no-publish --debug-dir " + path("dbg") + " --debug-frame 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* view : {"raw", "rectified", "gradient", "score", "detections"}) {
+    const fs::path p = dir_ / "dbg" / (std::string("cam0_frame1_") + view + ".png");
+    ASSERT_TRUE(fs::exists(p)) << p;
+    EXPECT_FALSE(cv::imread(p.string(), cv::IMREAD_UNCHANGED).empty()) << p;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "dbg" / "cam0_frame0_raw.png"));
+}
+
+TEST_F(CliRun, SyntheticRunEndsWithTruthComparison) {
+  const CliResult r = cli("run --no-publish --max-frames 2 --jsonl " + path("det.jsonl"));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("synthetic scene"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 processed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vs truth: robots recall"), std::string::npos) << r.out;
+  EXPECT_EQ(lines(readAll(path("det.jsonl"))).size(), 2u);
+}
+
+TEST_F(CliRun, BenchOnASourcePrintsJson) {
+  const CliResult r = cli("bench --source " + scene("frame_0_00000.pgm") + " --geometry " + scene("geometry.json") +
+                          " --iterations 3 --warmup 1 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(j["fps"].get<double>(), 0);
+  EXPECT_GE(j["stages_ms"]["total"]["p99"].get<double>(), j["stages_ms"]["total"]["median"].get<double>());
+  EXPECT_EQ(j["image_width"].get<int>(), 1224);
+}
+
+}  // namespace
+}  // namespace dv
