@@ -12,13 +12,15 @@
 
 namespace dv {
 
-// raw: CV_8UC1 mosaic of even size. Writes rows [row_begin, row_end) of the
-// (cols/2) x (rows/2) RGBX image `rgbx` (4 bytes per pixel, X = 0).
+// raw: CV_8UC1 mosaic of even size. Writes rows [row_begin, row_end), columns
+// [col_begin, col_end) (-1 = to the end) of the (cols/2) x (rows/2) RGBX
+// image `rgbx` (4 bytes per pixel, X = 0).
 void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx, int row_begin,
-                        int row_end);
+                        int row_end, int col_begin = 0, int col_end = -1);
 
-// raw: CV_8UC3 BGR. Writes rows [row_begin, row_end) of the same-size RGBX image.
-void bgrToRgbxRows(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end);
+// raw: CV_8UC3 BGR. Writes that part of the same-size RGBX image.
+void bgrToRgbxRows(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end,
+                   int col_begin = 0, int col_end = -1);
 
 // Where the red and blue samples of a pattern sit inside the 2x2 cell
 // (x = column offset, y = row offset, each 0 or 1).

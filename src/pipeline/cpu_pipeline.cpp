@@ -179,11 +179,15 @@ struct CpuPipeline::Impl {
     const auto t_start = std::chrono::steady_clock::now();
     auto t0 = t_start;
 
-    const int hs = table.src_height;
+    // Only the part of the image the grid reads.
+    const int rows = table.y_end - table.y_begin;
+    const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
     if (bayer) {
-      pool.parallelFor(hs, [&](int b, int e) { subsampleBayerRows(raw, opt.bayer, rgbx.data(), b, e); });
+      pool.parallelFor(rows, [&](int b, int e) {
+        subsampleBayerRows(raw, opt.bayer, rgbx.data(), y0 + b, y0 + e, x0, x1);
+      });
     } else {
-      pool.parallelFor(hs, [&](int b, int e) { bgrToRgbxRows(raw, rgbx.data(), b, e); });
+      pool.parallelFor(rows, [&](int b, int e) { bgrToRgbxRows(raw, rgbx.data(), y0 + b, y0 + e, x0, x1); });
     }
     times.bayer_ms = msSince(t0);
 
@@ -192,9 +196,9 @@ struct CpuPipeline::Impl {
     {
       const int ws = table.src_width;
       uint64_t sum = 0, n = 0;
-      for (int y = 0; y < hs; y += 16) {
+      for (int y = table.y_begin; y < table.y_end; y += 16) {
         const uint8_t* row = rgbx.data() + static_cast<size_t>(4) * ws * y;
-        for (int x = 0; x < ws; x += 4) sum += row[4 * x] + row[4 * x + 1] + row[4 * x + 2], n += 3;
+        for (int x = table.x_begin; x < table.x_end; x += 4) sum += row[4 * x] + row[4 * x + 1] + row[4 * x + 2], n += 3;
       }
       luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
     }

@@ -31,7 +31,9 @@ __attribute__((target_clones("avx2", "default"))) void gradientDotRows(
       const float gya = na * (a_rows[2][x] - a_rows[1][x]) + a * (a_rows[3][x] - a_rows[0][x]);
       const float gxb = na * (b_mid[x + k] - b_mid[x - k]) + a * (b_mid[x + k + 1] - b_mid[x - k - 1]);
       const float gyb = na * (b_rows[2][x] - b_rows[1][x]) + a * (b_rows[3][x] - b_rows[0][x]);
-      out[x] = static_cast<int32_t>(std::lrintf((gxa * gya + gxb * gyb) * kGradientFixedPoint));
+      // Truncation (not lrintf, which the compiler will not vectorise);
+      // its bias toward zero is symmetric for both signs.
+      out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
     }
   }
 }

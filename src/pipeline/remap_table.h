@@ -16,6 +16,9 @@ struct RemapTable {
   std::vector<int32_t> index;     // top-left sample: y0 * src_width + x0
   std::vector<uint16_t> frac;     // fx | fy << 8, in 1/256 of a sample
   std::vector<uint8_t> valid;     // 1 where the cell's point is seen by the camera
+  // The RGBX samples the table reads: columns [x_begin, x_end), rows
+  // [y_begin, y_end). Only these need to be produced per frame.
+  int x_begin = 0, x_end = 0, y_begin = 0, y_end = 0;
 
   // sample_step: 2 for Bayer subsampling (sample (i, j) is centered on full
   // pixel (2i + 0.5, 2j + 0.5)), 1 for full-resolution RGB.
@@ -68,6 +71,13 @@ void RemapTable::build(const CameraModel& camera, const RectifiedGrid& grid, dou
       }
     }
   });
+  // Cells that were skipped (no image point) keep index 0, which is read.
+  x_begin = src_width, x_end = 0, y_begin = src_height, y_end = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const int x0 = index[k] % src_width, y0 = index[k] / src_width;
+    x_begin = std::min(x_begin, x0), x_end = std::max(x_end, x0 + 2);
+    y_begin = std::min(y_begin, y0), y_end = std::max(y_end, y0 + 2);
+  }
 }
 
 }  // namespace dv

@@ -1,9 +1,27 @@
 #include "pipeline/thread_pool.h"
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace dv {
 
+namespace {
+
+// Cores this process may run on (taskset, cgroups), which
+// hardware_concurrency() ignores.
+int usableCores() {
+#if defined(__linux__)
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) return CPU_COUNT(&set);
+#endif
+  return static_cast<int>(std::thread::hardware_concurrency());
+}
+
+}  // namespace
+
 ThreadPool::ThreadPool(int threads) {
-  size_ = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
+  size_ = threads > 0 ? threads : usableCores();
   if (size_ < 1) size_ = 1;
   for (int i = 1; i < size_; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
 }
