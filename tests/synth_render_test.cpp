@@ -15,6 +15,7 @@
 #include "geometry/proto_json.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
+#include "synth/sensor_model.h"
 
 namespace dv {
 namespace {
@@ -324,6 +325,34 @@ TEST(SynthRender, TwoCameraPresetSeesTheOverlapFromBoth) {
   EXPECT_TRUE(has(b, 1));
   EXPECT_EQ(a.balls_size(), 1);
   EXPECT_EQ(b.balls_size(), 1);
+}
+
+TEST(SynthRender, SideViewSeesTheHorizon) {
+  SceneSpec s = presetScene("side_view");
+  scaleImages(s, 0.0625);
+  const cv::Mat rad = Renderer(s).renderRadiance(0, 0);
+  const Rgb bg = s.materials.background;
+  // Top row: rays above the horizon hit nothing; bottom row: carpet.
+  for (int u = 0; u < rad.cols; ++u) {
+    const cv::Vec3f p = rad.at<cv::Vec3f>(0, u);
+    EXPECT_FLOAT_EQ(p[0], float(bg.b));
+    EXPECT_FLOAT_EQ(p[2], float(bg.r));
+  }
+  const cv::Vec3f bottom = rad.at<cv::Vec3f>(rad.rows - 1, rad.cols / 2);
+  EXPECT_GT(bottom[1], bottom[2]);  // green carpet
+}
+
+TEST(SynthRender, UnevenLightSpansTheRatioAcrossTheImage) {
+  const cv::Mat map = unevenLightMap(200, 100, 3.0, 0.5);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(map, &lo, &hi);
+  EXPECT_NEAR(hi / lo, 3.0, 1e-4);
+  EXPECT_GT(map.at<float>(99, 199), map.at<float>(0, 0));  // brighter along +u, +v
+  SceneLighting l;
+  l.flicker_amplitude = 0.1;
+  l.flicker_frequency = 100;
+  l.exposure_time = 0.01;  // one full flicker period: averages out
+  EXPECT_NEAR(flickerGain(l, 0.0025), 1.0, 1e-9);
 }
 
 }  // namespace
