@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "dotvision/ssl_wrapper.pb.h"
 #include "net/multicast.h"
+#include "net/vision_publisher.h"
 
 namespace dv {
 namespace {
@@ -256,6 +257,88 @@ TEST(Multicast, PortHeldExclusivelyCannotBeBound) {
   ASSERT_NE(port, 0);
   expectInputError([&] { MulticastReceiver rx(kGroup, port, kLoopback); }, "cannot bind");
   ::close(fd);
+}
+
+
+// ---------------------------------------------------------------- publisher
+
+TEST(VisionPublisher, DetectionAndGeometryTravelInSeparateWrappers) {
+  REQUIRE_LOOPBACK_MULTICAST();
+  VisionPublisherOptions options;
+  options.port = randomPort();
+  options.interface_addr = kLoopback;
+  MulticastReceiver rx(options.group, options.port, kLoopback);
+  VisionPublisher publisher(options);
+
+  const uint32_t frame_number = uint32_t(rng()());
+  ASSERT_TRUE(publisher.publishDetection(sampleDetectionPacket(frame_number).detection()));
+  dv::ssl::SSL_GeometryData geometry;
+  auto* field = geometry.mutable_field();
+  field->set_field_length(9000);
+  field->set_field_width(6000);
+  field->set_goal_width(1000);
+  field->set_goal_depth(180);
+  field->set_boundary_width(int32_t(300 + rng()() % 1000));  // tells our packet apart
+  ASSERT_TRUE(publisher.setGeometry(geometry));
+  ASSERT_TRUE(publisher.publishGeometryIfDue(100.0));
+
+  bool saw_detection = false, saw_geometry = false;
+  std::string payload;
+  for (int i = 0; i < 100 && !(saw_detection && saw_geometry); ++i) {
+    if (!rx.receive(2.0, payload)) break;
+    dv::ssl::SSL_WrapperPacket packet;
+    if (!packet.ParseFromString(payload)) continue;
+    EXPECT_EQ(packet.source(), dv::ssl::SSL_SOURCE_SSL_VISION);
+    EXPECT_NE(packet.has_detection(), packet.has_geometry()) << "exactly one per datagram";
+    if (packet.has_detection() && packet.detection().frame_number() == frame_number) {
+      saw_detection = true;
+      EXPECT_EQ(packet.detection().robots_blue_size(), 1);
+    }
+    if (packet.has_geometry() &&
+        packet.geometry().field().boundary_width() == field->boundary_width()) {
+      saw_geometry = true;
+    }
+  }
+  EXPECT_TRUE(saw_detection);
+  EXPECT_TRUE(saw_geometry);
+}
+
+TEST(VisionPublisher, GeometryRepeatsAtTheInterval) {
+  VisionPublisherOptions options;
+  options.port = randomPort();
+  options.interface_addr = kLoopback;
+  options.geometry_interval_s = 3.0;
+  VisionPublisher publisher(options);
+  EXPECT_FALSE(publisher.publishGeometryIfDue(0.0)) << "nothing to send yet";
+  dv::ssl::SSL_GeometryData geometry;
+  EXPECT_FALSE(publisher.setGeometry(geometry)) << "required field sizes missing";
+  auto* field = geometry.mutable_field();
+  for (auto set : {&dv::ssl::SSL_GeometryFieldSize::set_field_length,
+                   &dv::ssl::SSL_GeometryFieldSize::set_field_width,
+                   &dv::ssl::SSL_GeometryFieldSize::set_goal_width,
+                   &dv::ssl::SSL_GeometryFieldSize::set_goal_depth,
+                   &dv::ssl::SSL_GeometryFieldSize::set_boundary_width}) {
+    (field->*set)(100);
+  }
+  ASSERT_TRUE(publisher.setGeometry(geometry));
+  EXPECT_TRUE(publisher.publishGeometryIfDue(10.0));  // first time: at once
+  EXPECT_FALSE(publisher.publishGeometryIfDue(11.0));
+  EXPECT_FALSE(publisher.publishGeometryIfDue(12.9));
+  EXPECT_TRUE(publisher.publishGeometryIfDue(13.0));
+  EXPECT_FALSE(publisher.publishGeometryIfDue(14.0));
+  EXPECT_EQ(publisher.sender().sentCount(), 2u);
+}
+
+TEST(VisionPublisher, IncompleteFrameIsNotSent) {
+  VisionPublisherOptions options;
+  options.port = randomPort();
+  options.interface_addr = kLoopback;
+  VisionPublisher publisher(options);
+  publisher.detection().set_frame_number(1);  // t_capture, t_sent, camera_id missing
+  EXPECT_FALSE(publisher.sendDetection());
+  EXPECT_EQ(publisher.droppedInvalid(), 1u);
+  EXPECT_EQ(publisher.sender().sentCount(), 0u);
+  EXPECT_FALSE(publisher.detection().has_frame_number()) << "cleared for the next frame";
 }
 
 }  // namespace
