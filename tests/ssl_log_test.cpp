@@ -303,6 +303,18 @@ TEST(SslLog, NegativeSize) {
   EXPECT_EQ(recordsBeforeError(path, {path, "byte 35", "negative record size"}), 1);
 }
 
+TEST(SslLog, ErrorIsStickyRatherThanDecodingGarbage) {
+  const auto path = tempPath("sticky.log");
+  std::string bytes = fileHeader() + recordBytes(1, 4, "abc") + recordBytes(2, 4, "") +
+                      recordBytes(3, 4, "xyz");
+  bytes[35 + 12] = char(0xff);
+  writeFile(path, bytes);
+  SslLogReader reader(path);
+  ASSERT_TRUE(reader.next());
+  EXPECT_THROW(reader.next(), InputError);
+  expectInputError([&] { reader.next(); }, {path, "byte 35", "negative record size"});
+}
+
 TEST(SslLog, AbsurdSize) {
   const auto path = tempPath("absurd.log");
   std::string bytes = fileHeader() + recordBytes(1, 4, "abc") + recordBytes(2, 4, "");

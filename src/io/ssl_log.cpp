@@ -216,7 +216,19 @@ void SslLogReader::skipBytes(int64_t n, int64_t record_offset) {
 }
 
 bool SslLogReader::next(LogRecord& out) {
+  if (!failure_.empty()) throw InputError(path_, failure_);
   if (!file_) return false;
+  try {
+    return readRecord(out);
+  } catch (const InputError& e) {
+    // The stream position is lost; later calls repeat the same error
+    // instead of decoding garbage.
+    failure_ = std::string(e.what()).substr(path_.size() + 2);
+    throw;
+  }
+}
+
+bool SslLogReader::readRecord(LogRecord& out) {
   for (;;) {
     const int64_t record_offset = offset_;
     uint8_t header[kSslLogRecordHeaderBytes];

@@ -84,7 +84,8 @@ class SslLogReader {
   // The next record, or nullopt at a clean end of file. Index records are
   // recognised and skipped. Throws InputError naming the file, the byte
   // offset of the damaged record and what is wrong (truncated record header
-  // or payload, negative or absurd size, corrupt gzip data).
+  // or payload, negative or absurd size, corrupt gzip data); after that,
+  // every further call throws the same error.
   std::optional<LogRecord> next();
   // The same, reusing `out`'s payload buffer; false at a clean end.
   bool next(LogRecord& out);
@@ -97,10 +98,12 @@ class SslLogReader {
   // Reads up to n bytes; stream_offset only labels errors.
   size_t readBytes(void* data, size_t n, int64_t stream_offset);
   void skipBytes(int64_t n, int64_t record_offset);
+  bool readRecord(LogRecord& out);
 
   std::string path_;
   void* file_ = nullptr;  // gzFile
   int64_t offset_ = 0;
+  std::string failure_;  // set once a record could not be read
 };
 
 // Record offsets stored in the index at the end of an uncompressed log, or
