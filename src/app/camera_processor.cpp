@@ -25,16 +25,17 @@ BayerPattern bayerPatternOf(PixelFormat format) {
 CameraProcessor::CameraProcessor(const CameraCalibration& calibration, const FieldModel& field,
                                  const ProcessorOptions& options)
     : camera_(calibration),
-      pipeline_(camera_, field, options.pipeline),
+      field_(field),
+      pipeline_(makePipeline(camera_, field, options.pipeline, options.backend, &backend_note_)),
       detector_(camera_, field, options.detector) {}
 
 bool CameraProcessor::process(const Frame& frame, Detections& out, std::string& why) {
   const auto t0 = Clock::now();
-  const bool ok = pipeline_.process(frame.image, blobs_);
+  const bool ok = pipeline_->process(frame.image, blobs_);
   const auto t1 = Clock::now();
   pipeline_ms_ = msBetween(t0, t1);
   if (!ok) {
-    why = pipeline_.lastError();
+    why = pipeline_->lastError();
     out.balls.clear();
     out.robots.clear();
     detection_ms_ = 0;

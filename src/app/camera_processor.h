@@ -2,19 +2,21 @@
 // One camera's processing chain as `run` and `bench` use it: pixel pipeline
 // (raw frame -> blobs) then detector (blobs -> robots and balls), with the
 // time each part took. Buffers live here and are reused frame after frame.
+#include <memory>
 #include <string>
 
 #include "detection/detector.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "io/frame_source.h"
-#include "pipeline/cpu_pipeline.h"
+#include "pipeline/backend.h"
 
 namespace dv::app {
 
 struct ProcessorOptions {
   PipelineOptions pipeline;
   DetectorOptions detector;
+  BackendChoice backend;  // CPU reference unless asked otherwise
 };
 
 // The pipeline's Bayer setting for a frame source's pixel format.
@@ -22,8 +24,8 @@ BayerPattern bayerPatternOf(PixelFormat format);
 
 class CameraProcessor {
  public:
-  // Throws InputError (from the pipeline) when the camera sees no field or
-  // the calibration has no image size.
+  // Throws InputError (from the pipeline) when the camera sees no field, the
+  // calibration has no image size, or an explicitly chosen backend fails.
   CameraProcessor(const CameraCalibration& calibration, const FieldModel& field,
                   const ProcessorOptions& options);
 
@@ -32,14 +34,19 @@ class CameraProcessor {
   bool process(const Frame& frame, Detections& out, std::string& why);
 
   const CameraModel& camera() const { return camera_; }
-  const CpuPipeline& pipeline() const { return pipeline_; }
+  const PixelPipeline& pipeline() const { return *pipeline_; }
+  const FieldModel& field() const { return field_; }
+  // What makePipeline chose and why ("cpu", "opencl <device>", ...).
+  const std::string& backendNote() const { return backend_note_; }
   const BlobList& blobs() const { return blobs_; }
   double lastPipelineMs() const { return pipeline_ms_; }
   double lastDetectionMs() const { return detection_ms_; }
 
  private:
   CameraModel camera_;
-  CpuPipeline pipeline_;
+  FieldModel field_;
+  std::string backend_note_;
+  std::unique_ptr<PixelPipeline> pipeline_;
   Detector detector_;
   BlobList blobs_;
   double pipeline_ms_ = 0;

@@ -37,6 +37,8 @@ struct BenchArgs {
   int width = 2448;
   int height = 2048;
   std::string backend = "cpu";
+  std::string opencl_platform;
+  std::string opencl_device;
   bool json = false;
 };
 
@@ -82,12 +84,19 @@ CommandFn addBenchCommand(CLI::App& root) {
   cmd->add_option("--threads", a->threads, "pipeline threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--width", a->width, "synthetic image width (default 2448)")->check(CLI::Range(64, 8192));
   cmd->add_option("--height", a->height, "synthetic image height (default 2048)")->check(CLI::Range(64, 8192));
-  cmd->add_option("--backend", a->backend, "pixel pipeline backend (only 'cpu' so far)")
-      ->check(CLI::IsMember({"cpu"}));
+  cmd->add_option("--backend", a->backend, "pixel pipeline backend: cpu|opencl|auto (default cpu)")
+      ->default_str("cpu");
+  cmd->add_option("--opencl-platform", a->opencl_platform, "OpenCL platform: index or name substring");
+  cmd->add_option("--opencl-device", a->opencl_device, "OpenCL device: index or name substring");
   cmd->add_flag("--json", a->json, "print the result as one JSON object");
 
   return [a] {
     if (a->width % 2 || a->height % 2) throw InputError("command line", "--width and --height must be even");
+    ProcessorOptions options;
+    if (!parseBackend(a->backend.c_str(), options.backend.backend))
+      throw InputError("command line", "unknown --backend '" + a->backend + "' (expected cpu, opencl or auto)");
+    options.backend.opencl_platform = a->opencl_platform;
+    options.backend.opencl_device = a->opencl_device;
     // Frames to cycle through, all of one camera.
     std::vector<Frame> frames;
     CameraCalibration calibration;
@@ -137,13 +146,12 @@ CommandFn addBenchCommand(CLI::App& root) {
       calibration.image_height = static_cast<uint32_t>(frames[0].image.rows);
     }
 
-    ProcessorOptions options;
     options.pipeline.threads = a->threads;
     options.pipeline.bayer = bayerPatternOf(frames[0].format);
     CameraProcessor processor(calibration, field, options);
 
     std::vector<Series> series = {{"bayer", {}}, {"rectify", {}}, {"color", {}},  {"gradient", {}},
-                                  {"sat", {}},   {"score", {}},   {"peaks", {}},  {"pipeline", {}},
+                                  {"sat", {}},   {"score", {}},   {"peaks", {}},  {"upload", {}}, {"pipeline", {}},
                                   {"detection", {}}, {"total", {}}};
     for (auto& s : series) s.ms.reserve(static_cast<size_t>(a->iterations));
     Detections detections;
@@ -159,7 +167,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       if (i < a->warmup) continue;
       const StageTimes& st = processor.pipeline().times();
       const double values[] = {st.bayer_ms, st.rectify_ms, st.color_ms, st.gradient_ms, st.sat_ms,
-                               st.score_ms, st.peaks_ms,   processor.lastPipelineMs(),
+                               st.score_ms, st.peaks_ms,   processor.pipeline().uploadMs(), processor.lastPipelineMs(),
                                processor.lastDetectionMs(),
                                processor.lastPipelineMs() + processor.lastDetectionMs()};
       for (size_t k = 0; k < series.size(); ++k) series[k].ms.push_back(values[k]);
@@ -176,7 +184,7 @@ CommandFn addBenchCommand(CLI::App& root) {
     if (a->json) {
       nlohmann::json j;
       j["source"] = what;
-      j["backend"] = a->backend;
+      j["backend"] = processor.pipeline().name();
       j["image_width"] = calibration.image_width;
       j["image_height"] = calibration.image_height;
       j["grid_width"] = processor.pipeline().grid().width;
@@ -194,7 +202,8 @@ CommandFn addBenchCommand(CLI::App& root) {
     } else {
       std::printf("dotvision bench: %s, %ux%u -> grid %dx%d, backend %s, %u threads, %d frames timed\n",
                   what.c_str(), calibration.image_width, calibration.image_height,
-                  processor.pipeline().grid().width, processor.pipeline().grid().height, a->backend.c_str(),
+                  processor.pipeline().grid().width, processor.pipeline().grid().height,
+                  processor.pipeline().name().c_str(),
                   threads, a->iterations);
       std::printf("  %-10s %10s %10s\n", "stage", "median ms", "p99 ms");
       for (const auto& s : series)

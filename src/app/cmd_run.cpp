@@ -53,6 +53,9 @@ struct RunArgs {
   std::string debug_dir;
   long debug_frame = 0;
   int threads = 0;
+  std::string backend = "cpu";
+  std::string opencl_platform;
+  std::string opencl_device;
   long max_frames = -1;
   bool quiet = false;
 };
@@ -164,6 +167,16 @@ struct RunState {
   std::vector<std::string> debug_written;
 };
 
+ProcessorOptions processorOptions(const RunArgs& a) {
+  ProcessorOptions o;
+  o.pipeline.threads = a.threads;
+  if (!parseBackend(a.backend.c_str(), o.backend.backend))
+    throw InputError("command line", "unknown --backend '" + a.backend + "' (expected cpu, opencl or auto)");
+  o.backend.opencl_platform = a.opencl_platform;
+  o.backend.opencl_device = a.opencl_device;
+  return o;
+}
+
 void reportSkip(RunState& s, const std::string& name, const std::string& reason) {
   std::fprintf(stderr, "dotvision run: skipped %s: %s\n", name.c_str(), reason.c_str());
   s.skipped.push_back({name, reason});
@@ -227,6 +240,9 @@ void printSummary(const RunState& s, const std::string& what, const std::vector<
   const double per = processed > 0 ? 1.0 / processed : 0;
   std::printf("dotvision run: %s\n", what.c_str());
   std::printf("  frames: %ld processed, %zu skipped\n", processed, s.skipped.size());
+  for (const Channel& c : channels)
+    if (c.processor)
+      std::printf("  camera %u: backend %s\n", c.calibration.camera_id, c.processor->pipeline().name().c_str());
   std::printf("  detections: %ld robots (%.2f per frame), %ld balls (%.2f per frame)\n", robots,
               robots * per, balls, balls * per);
   if (!total.empty()) {
@@ -288,8 +304,7 @@ int runOnSource(const RunArgs& a) {
   std::unique_ptr<FrameSource> source = openFrameSource(a.source, so);
 
   Outputs outputs(a, toProto(geometry));
-  RunState state{a, geometry.field, {}, outputs, {}, {}, false, {}};
-  state.options.pipeline.threads = a.threads;
+  RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, false, {}};
   std::vector<Channel> channels(1);
   channels[0].calibration = *calibration;
 
@@ -330,8 +345,7 @@ int runSynthetic(const RunArgs& a) {
                                                      " (cameras: " + cameraIds(geometry) + ")");
 
   Outputs outputs(a, toProto(geometry));
-  RunState state{a, geometry.field, {}, outputs, {}, {}, true, {}};
-  state.options.pipeline.threads = a.threads;
+  RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, true, {}};
   std::vector<Channel> channels(camera_indices.size());
   for (size_t k = 0; k < camera_indices.size(); ++k)
     channels[k].calibration = spec.cameras[camera_indices[k]].calib;
@@ -395,11 +409,16 @@ CommandFn addRunCommand(CLI::App& root) {
   cmd->add_option("--debug-frame", a->debug_frame, "index of the frame to inspect (default 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", a->threads, "pipeline threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--backend", a->backend, "pixel pipeline backend: cpu|opencl|auto (default cpu)")
+      ->default_str("cpu");
+  cmd->add_option("--opencl-platform", a->opencl_platform, "OpenCL platform: index or name substring");
+  cmd->add_option("--opencl-device", a->opencl_device, "OpenCL device: index or name substring");
   cmd->add_option("--max-frames", a->max_frames, "stop after this many frames")->check(CLI::NonNegativeNumber);
 
   return [a] {
     // Validate the Bayer name up front so a typo fails before any work.
     bayerFormatFromName(a->bayer, "--bayer");
+    processorOptions(*a);
     if (!a->source.empty()) return runOnSource(*a);
     if (!a->geometry.empty())
       throw InputError("command line", "--geometry is only used with --source (the synthetic scene has its own)");

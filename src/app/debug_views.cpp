@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "pipeline/cpu_pipeline.h"
 
 namespace dv::app {
 
@@ -66,7 +67,11 @@ std::vector<std::string> writeDebugViews(const std::string& dir, uint32_t camera
   std::vector<std::string> written;
   const cv::Mat raw = frameToBgr(frame);
   save(prefix + "raw.png", raw, written);
-  const CpuPipeline& pipeline = processor.pipeline();
+  // The views come from the CPU reference run on this frame, whatever backend
+  // the processor uses: only it keeps its intermediate images.
+  CpuPipeline pipeline(processor.camera(), processor.field(), processor.pipeline().options());
+  BlobList reference_blobs;
+  pipeline.process(frame.image, reference_blobs);
   const cv::Mat rectified = pipeline.debugRectified();
   save(prefix + "rectified.png", rectified, written);
   save(prefix + "gradient.png", pipeline.debugGradient(), written);
@@ -74,7 +79,7 @@ std::vector<std::string> writeDebugViews(const std::string& dir, uint32_t camera
 
   if (!rectified.empty()) {
     cv::Mat blobs = rectified.clone();
-    for (const Blob& b : processor.blobs().blobs) {
+    for (const Blob& b : reference_blobs.blobs) {
       const cv::Point c(static_cast<int>(std::lround(b.grid.x)), static_cast<int>(std::lround(b.grid.y)));
       cv::circle(blobs, c, 4, cv::Scalar(b.rgb[2], b.rgb[1], b.rgb[0]), -1, cv::LINE_AA);
       cv::circle(blobs, c, 5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
