@@ -41,6 +41,9 @@ struct Hypothesis {
   Team team = Team::Yellow;
   int id = 0;
   int track = -1;
+  std::array<MarkerColor, 4> colors{};  // side colors, valid where seen
+  uint8_t seen_sides = 0;               // bit s-1 set: slot s was seen
+  bool fullPattern() const { return seen_sides == 0xF; }
 };
 
 struct RobotTrack {
@@ -49,6 +52,7 @@ struct RobotTrack {
   Team pending_team = Team::Yellow;  // contrary evidence being counted
   int pending_id = -1;
   int pending_count = 0;
+  bool id_certain = false;  // seen with all four side blobs at least once
   FieldMm pos[2];  // [1] newest
   double orientation[2] = {0, 0};
   double t[2] = {0, 0};
@@ -373,8 +377,12 @@ struct Detector::Impl {
       twoMeans(local, m, prior, ext, 1, lab);
       std::array<MarkerColor, 4> colors;
       colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
-      for (int i = 0; i < m; ++i)
+      r.seen_sides = 0;
+      for (int i = 0; i < m; ++i) {
         colors[r.slot[i + 1] - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+        r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i + 1] - 1));
+      }
+      r.colors = colors;
       r.id = patternId(colors);
     }
 
@@ -542,7 +550,24 @@ struct Detector::Impl {
   // Identity hysteresis: a tracked robot keeps team and id until several
   // consecutive frames agree on the same different identity.
   void applyIdentity(RobotTrack& tr, Hypothesis& h) {
-    if (h.team == tr.team && h.id == tr.id) {
+    // A robot missing a side blob agrees with the track when the colors it
+    // shows match the track's pattern; the guessed color is no evidence.
+    bool agrees = h.team == tr.team && h.id == tr.id;
+    if (!agrees && h.team == tr.team && !h.fullPattern()) {
+      const auto want = patternColors(tr.id);
+      agrees = true;
+      for (int s = 0; s < 4; ++s)
+        if ((h.seen_sides >> s & 1) && h.colors[s] != want[s]) agrees = false;
+    }
+    if (!tr.id_certain && h.fullPattern() && !agrees) {
+      // The track's id was a guess; the first full view decides.
+      tr.team = h.team;
+      tr.id = h.id;
+      tr.pending_count = 0;
+      agrees = true;
+    }
+    if (h.fullPattern() && h.team == tr.team && h.id == tr.id) tr.id_certain = true;
+    if (agrees) {
       tr.pending_count = 0;
     } else {
       if (h.team == tr.pending_team && h.id == tr.pending_id) {
@@ -586,6 +611,7 @@ struct Detector::Impl {
       RobotTrack tr;
       tr.team = robots[r].team;
       tr.id = robots[r].id;
+      tr.id_certain = robots[r].fullPattern();
       updateTrack(tr, robots[r], t);
       tracks.push_back(tr);
     }

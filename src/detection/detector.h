@@ -68,8 +68,11 @@ struct DetectorOptions {
   double side_search_radius = 90;  // mm, side blobs around a center blob
   double score_scale = 10;         // mm, offset giving score 0.5 (eq. 5.21)
   double min_robot_score = 0.1;    // hypotheses below are dropped
-  // Single-frame hypotheses need at least this many side blobs (4 = thesis).
-  int min_side_blobs = 4;
+  // Single-frame hypotheses need at least this many side blobs (the thesis
+  // uses 4). With 3, a robot whose side blob the pixel stage missed is still
+  // found (ranked at half its score); its id is then a guess (the missing
+  // blob is taken as green) unless a track knows it.
+  int min_side_blobs = 3;
 
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color
