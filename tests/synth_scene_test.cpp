@@ -121,6 +121,30 @@ TEST(SynthScene, ImpossibleValuesAreRejected) {
             std::string::npos);
 }
 
+TEST(SynthScene, MutatedScenesGiveInputErrorsNeverCrashes) {
+  // Every single-character deletion or replacement of a valid scene either
+  // loads or throws InputError; nothing else escapes.
+  const std::string base = std::string(kMinimal) +
+                           "random_robots: {yellow: 2, blue: 2}\nlighting: {sun_patches: "
+                           "[{center: [0, 0], radii: [100, 50]}]}\nfield: {division: a}\n";
+  int errors = 0, loaded = 0;
+  for (size_t i = 0; i < base.size(); ++i)
+    for (const char* with : {"", ":", "[", "-", "x", "9", " ", "{"}) {
+      const std::string text = base.substr(0, i) + with + base.substr(i + 1);
+      try {
+        sceneFromYaml(text, "mutant");
+        ++loaded;
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.source(), "mutant");
+        ++errors;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "not an InputError: " << e.what() << "\n" << text;
+      }
+    }
+  EXPECT_GT(errors, 100);
+  EXPECT_GT(loaded, 10);
+}
+
 TEST(SynthScene, MissingFileIsAnInputError) {
   const std::string path = "/nonexistent/dir/scene.yaml";
   try {

@@ -182,7 +182,7 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
   const uint32_t id = uint32_t(
       n["id"].IsDefined() ? r.integer(n["id"], where + ".id", 0, 1000) : int(index));
   if (!n["size"].IsDefined()) r.fail(n, where + ": missing key 'size' ([width, height] in px)");
-  const auto size = r.numbers(n["size"], where + ".size", 2, 2, 2, 20000);
+  const auto size = r.numbers(n["size"], where + ".size", 2, 2, 2, 8192);
   if (size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]))
     r.fail(n["size"], where + ".size: expected whole pixels");
   if (!n["focal_length"].IsDefined()) r.fail(n, where + ": missing key 'focal_length' (px)");
