@@ -6,6 +6,7 @@
 
 #include "detection/detector.h"
 #include "detection_test_scene.h"
+#include "core/error.h"
 #include "geometry/field_model.h"
 
 namespace dv {
@@ -224,6 +225,41 @@ TEST(DetectionAssignment, EmptyAndDegenerateInputDoNotCrash) {
   above.blobs.push_back(Blob{});
   det.process(above, 2, out);
   EXPECT_TRUE(out.robots.empty());
+}
+
+}  // namespace
+}  // namespace dv
+
+namespace dv {
+namespace {
+
+TEST(DetectionOptions, ImpossibleValuesAreOneClearError) {
+  const CameraModel cam(test::topDownCamera());
+  auto expectError = [&](DetectorOptions o, const std::string& needle) {
+    try {
+      Detector d(cam, FieldModel::divisionB(), o);
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), "detector options");
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  DetectorOptions o;
+  o.robot_height_blue = -5;
+  expectError(o, "robot_height_blue");
+  o = {};
+  o.retention_force = 0.95;
+  expectError(o, "retention_force");
+  o = {};
+  o.min_side_blobs = 2;
+  expectError(o, "min_side_blobs");
+  o = {};
+  o.robot_height_yellow = 9000;  // above the camera at 4.5 m
+  expectError(o, "below the camera");
+  o = {};
+  o.ball_radius = std::nan("");
+  expectError(o, "ball_radius");
+  EXPECT_NO_THROW(Detector(cam, FieldModel::divisionB(), DetectorOptions{}));
 }
 
 }  // namespace

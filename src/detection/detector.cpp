@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <string>
+
+#include "core/error.h"
 #include "detection/blob_index.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
@@ -829,8 +832,43 @@ struct Detector::Impl {
   }
 };
 
+void validateDetectorOptions(const DetectorOptions& o, const CameraModel& camera) {
+  auto fail = [](const std::string& what) { throw InputError("detector options", what); };
+  auto positive = [&](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) fail(std::string(name) + " must be > 0, got " + std::to_string(v));
+  };
+  positive(o.robot_height_yellow, "robot_height_yellow");
+  positive(o.robot_height_blue, "robot_height_blue");
+  positive(o.ball_radius, "ball_radius");
+  positive(o.side_search_radius, "side_search_radius");
+  positive(o.score_scale, "score_scale");
+  positive(o.max_robot_acceleration, "max_robot_acceleration");
+  positive(o.max_prediction_dt, "max_prediction_dt");
+  positive(o.min_uncertainty, "min_uncertainty");
+  positive(o.track_gate, "track_gate");
+  positive(o.max_robot_speed, "max_robot_speed");
+  positive(o.max_ball_speed, "max_ball_speed");
+  if (!(o.retention_force >= 0 && o.reference_force >= 0 &&
+        o.retention_force + o.reference_force <= 1))
+    fail("retention_force and reference_force must be >= 0 with a sum <= 1, got " +
+         std::to_string(o.retention_force) + " and " + std::to_string(o.reference_force));
+  if (!(o.min_robot_score >= 0 && o.min_robot_score < 1))
+    fail("min_robot_score must be in [0, 1), got " + std::to_string(o.min_robot_score));
+  if (o.min_side_blobs < 3 || o.min_side_blobs > 4)
+    fail("min_side_blobs must be 3 or 4, got " + std::to_string(o.min_side_blobs));
+  if (o.identity_switch_frames < 1)
+    fail("identity_switch_frames must be >= 1, got " + std::to_string(o.identity_switch_frames));
+  if (o.max_balls < 0) fail("max_balls must be >= 0, got " + std::to_string(o.max_balls));
+  const double cz = camera.position().z();
+  if (o.robot_height_yellow >= cz || o.robot_height_blue >= cz)
+    fail("robot heights must lie below the camera (" + std::to_string(cz) + " mm)");
+}
+
 Detector::Detector(const CameraModel& camera, const FieldModel& field, const DetectorOptions& opt)
-    : opt_(opt), impl_(std::make_unique<Impl>(camera, field, opt)) {}
+    : opt_(opt) {
+  validateDetectorOptions(opt, camera);
+  impl_ = std::make_unique<Impl>(camera, field, opt);
+}
 Detector::~Detector() = default;
 Detector::Detector(Detector&&) noexcept = default;
 Detector& Detector::operator=(Detector&&) noexcept = default;

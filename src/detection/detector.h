@@ -103,8 +103,14 @@ struct DetectorOptions {
   int max_balls = 8;
 };
 
+// Throws InputError("detector options", what) for impossible values
+// (non-positive heights or radii, forces outside [0, 1] or summing above 1,
+// a robot height at or above the camera, ...).
+void validateDetectorOptions(const DetectorOptions& opt, const CameraModel& camera);
+
 class Detector {
  public:
+  // Validates the options (see validateDetectorOptions).
   Detector(const CameraModel& camera, const FieldModel& field, const DetectorOptions& opt);
   ~Detector();
   Detector(Detector&&) noexcept;
