@@ -55,7 +55,7 @@ TEST_P(FullFieldLooks, FindsEveryRobotWithIdAndTheBallFirst) {
   for (unsigned seed = 1; seed <= 5; ++seed) {
     SceneBuilder s(cam, seed * 7 + GetParam(), looks[GetParam()]);
     for (const auto& r : s.randomRobots(11, 11, kX0, kX1, kY0, kY1)) s.addRobot(r);
-    const FieldMm ball{1111 + 100 * seed, -333};
+    const FieldMm ball{1111.0 + 100.0 * seed, -333};
     s.addBall(ball);
     s.addClutter(160, 40, kX0, kX1, kY0, kY1);
     Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
@@ -139,7 +139,10 @@ TEST(DetectionAssignment, TiltedCameraAndTeamHeights) {
   const auto px = cam.fieldToImage({a.position.x, a.position.y, 140});
   ASSERT_TRUE(px);
   for (const auto& r : out.robots)
-    if (r.team == Team::Yellow) EXPECT_NEAR(r.pixel.u, px->u, 1.0);
+    if (r.team == Team::Yellow) {
+      EXPECT_NEAR(r.pixel.u, px->u, 1.0);
+      EXPECT_NEAR(r.pixel.v, px->v, 1.0);
+    }
 }
 
 TEST(DetectionBalls, PinkBlobApartIsNotABall) {
@@ -154,7 +157,9 @@ TEST(DetectionBalls, PinkBlobApartIsNotABall) {
     Detections out;
     det.process(s.list, 0, out);
     ASSERT_EQ(out.balls.size(), static_cast<size_t>(with_ball));
-    if (with_ball) EXPECT_NEAR(out.balls[0].position.x, 3000, 5);
+    if (with_ball) {
+      EXPECT_NEAR(out.balls[0].position.x, 3000, 5);
+    }
   }
 }
 
