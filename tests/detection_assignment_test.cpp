@@ -269,3 +269,39 @@ TEST(DetectionOptions, ImpossibleValuesAreOneClearError) {
 
 }  // namespace
 }  // namespace dv
+
+namespace dv {
+namespace {
+
+TEST(DetectionAssignment, MissingSideBlobTakesTheIdNoOtherRobotHolds) {
+  const CameraModel cam(test::topDownCamera());
+  // Robot A (id 0: FL P, BL G, BR P, FR P) misses its front-left blob; taken
+  // as green that would read as id 1, which robot B shows in full.
+  auto colors = patternColors(0);
+  ASSERT_EQ(colors[kFrontLeft], MarkerColor::Pink);
+  colors[kFrontLeft] = MarkerColor::Green;
+  const int guess = patternId(colors);
+  test::TrueRobot a{Team::Yellow, 0, {1500, 500}, 0.7};
+  a.present = {true, false, true, true, true};
+  const test::TrueRobot b{Team::Yellow, guess, {2500, -500}, -0.4};
+  const test::TrueRobot c{Team::Blue, 4, {3000, 1000}, 2.0};
+  for (bool with_b : {false, true}) {
+    SceneBuilder s(cam, 77);
+    s.addRobot(a);
+    if (with_b) s.addRobot(b);
+    s.addRobot(c);
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out);
+    const RobotDetection* found = nullptr;
+    for (const auto& r : out.robots)
+      if (std::hypot(r.position.x - a.position.x, r.position.y - a.position.y) < 10) found = &r;
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(found->team, Team::Yellow);
+    EXPECT_EQ(found->id, with_b ? 0 : guess);
+    EXPECT_LT(found->confidence, 0.6f) << "a missing blob halves the confidence";
+  }
+}
+
+}  // namespace
+}  // namespace dv

@@ -388,6 +388,22 @@ struct Detector::Impl {
       r.colors = colors;
       r.id = patternId(colors);
     }
+    // A robot missing a side blob has two possible ids; ids are unique per
+    // team, so prefer the one no fully seen robot of its team holds.
+    for (auto& r : robots) {
+      if (r.fullPattern() || r.n != 4) continue;
+      int missing = 0;
+      while (r.seen_sides >> missing & 1) ++missing;
+      auto alt = r.colors;
+      alt[missing] = MarkerColor::Pink;
+      const int alt_id = patternId(alt);
+      auto taken = [&](int id) {
+        for (const auto& o : robots)
+          if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
+        return false;
+      };
+      if (taken(r.id) && !taken(alt_id)) r.id = alt_id, r.colors = alt;
+    }
 
     // How this camera shows the pattern colors tells where its orange is.
     ColorVec ref[4], seen[4];
