@@ -253,17 +253,21 @@ struct Detector::Impl {
       static constexpr int kAllSlots[4] = {1, 2, 3, 4};
       for (pick[0] = 0; pick[0] < k; ++pick[0])
         for (pick[1] = pick[0] + 1; pick[1] < k; ++pick[1])
-          for (pick[2] = pick[1] + 1; pick[2] < k; ++pick[2]) {
+          for (pick[2] = pick[1] + 1; pick[2] < k; ++pick[2])
             for (pick[3] = pick[2] + 1; pick[3] < k; ++pick[3]) consider(pick, 4, kAllSlots);
-            if (opt.min_side_blobs <= 3) {
+      // Three side blobs can only win when no full pattern ranks above
+      // their best possible rank.
+      if (opt.min_side_blobs <= 3 && best.rank < kFourBlobPenalty) {
+        for (pick[0] = 0; pick[0] < k; ++pick[0])
+          for (pick[1] = pick[0] + 1; pick[1] < k; ++pick[1])
+            for (pick[2] = pick[1] + 1; pick[2] < k; ++pick[2])
               for (int missing = 1; missing <= 4; ++missing) {
                 int slots[3], s = 0;
                 for (int q = 1; q <= 4; ++q)
                   if (q != missing) slots[s++] = q;
                 consider(pick, 3, slots);
               }
-            }
-          }
+      }
       if (best.rank > 0) hyps.push_back(best);
     }
   }
