@@ -62,6 +62,58 @@ __attribute__((target_clones("avx2", "default"))) void subsampleRow(
   }
 }
 
+inline uint32_t packChroma(const ChromaFixed& k, int r, int g, int b) {
+  const int a = (k.a[0] * r + k.a[1] * g + k.a[2] * b + 8) >> 4;
+  const int c = (k.b[0] * r + k.b[1] * g + k.b[2] * b + 8) >> 4;
+  return (static_cast<uint32_t>(a) & 0xffffu) | (static_cast<uint32_t>(c) << 16);
+}
+
+template <int RX, int RY, int BX, int BY>
+__attribute__((target_clones("avx2", "default"))) void chromaRow(
+    const uint8_t* r_row, const uint8_t* r_nrow, const uint8_t* b_row, const uint8_t* b_nrow,
+    const uint8_t* g_row0, const uint8_t* g_row1, int ws, int c0, int c1, const ChromaFixed& k,
+    uint32_t* out) {
+  constexpr int rs = RX == 0 ? 2 : -2;
+  constexpr int bs = BX == 0 ? 2 : -2;
+  constexpr int g0x = 1 - RX, g1x = RX;
+  const int last = ws - 1;
+  for (int i : {0, last}) {
+    if (i < c0 || i >= c1) continue;
+    const int rc = 2 * i + RX, bc = 2 * i + BX;
+    const int rn = std::clamp(rc + rs, RX, 2 * last + RX);
+    const int bn = std::clamp(bc + bs, BX, 2 * last + BX);
+    out[i] = packChroma(k, quarterShift(r_row[rc], r_row[rn], r_nrow[rc], r_nrow[rn]),
+                        (g_row0[2 * i + g0x] + g_row1[2 * i + g1x] + 1) >> 1,
+                        quarterShift(b_row[bc], b_row[bn], b_nrow[bc], b_nrow[bn]));
+  }
+  const int ka0 = k.a[0], ka1 = k.a[1], ka2 = k.a[2], kb0 = k.b[0], kb1 = k.b[1], kb2 = k.b[2];
+  const int i_end = std::min(c1, last);
+  for (int i = std::max(c0, 1); i < i_end; ++i) {
+    const int rc = 2 * i + RX, bc = 2 * i + BX;
+    const int r = (9 * r_row[rc] + 3 * r_row[rc + rs] + 3 * r_nrow[rc] + r_nrow[rc + rs] + 8) >> 4;
+    const int g = (g_row0[2 * i + g0x] + g_row1[2 * i + g1x] + 1) >> 1;
+    const int b = (9 * b_row[bc] + 3 * b_row[bc + bs] + 3 * b_nrow[bc] + b_nrow[bc + bs] + 8) >> 4;
+    const int a = (ka0 * r + ka1 * g + ka2 * b + 8) >> 4;
+    const int c = (kb0 * r + kb1 * g + kb2 * b + 8) >> 4;
+    out[i] = (static_cast<uint32_t>(a) & 0xffffu) | (static_cast<uint32_t>(c) << 16);
+  }
+}
+
+template <int RX, int RY, int BX, int BY>
+void chromaRowsT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin,
+                 int row_end, int c0, int c1) {
+  const int ws = raw.cols / 2, hs = raw.rows / 2;
+  constexpr int rdy = RY == 0 ? 1 : -1;
+  constexpr int bdy = BY == 0 ? 1 : -1;
+  for (int j = row_begin; j < row_end; ++j) {
+    const int rj = std::clamp(j + rdy, 0, hs - 1), bj = std::clamp(j + bdy, 0, hs - 1);
+    chromaRow<RX, RY, BX, BY>(raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * rj + RY),
+                              raw.ptr<uint8_t>(2 * j + BY), raw.ptr<uint8_t>(2 * bj + BY),
+                              raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * j + 1 - RY), ws,
+                              c0, c1, k, packed + static_cast<size_t>(ws) * j);
+  }
+}
+
 template <int RX, int RY, int BX, int BY>
 void subsampleRowsT(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end, int c0, int c1) {
   const int ws = raw.cols / 2, hs = raw.rows / 2;
@@ -88,6 +140,53 @@ void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx,
     case BayerPattern::BGGR: return subsampleRowsT<1, 1, 0, 0>(raw, rgbx, row_begin, row_end, c0, c1);
     default: return subsampleRowsT<0, 0, 1, 1>(raw, rgbx, row_begin, row_end, c0, c1);
   }
+}
+
+void bayerChromaRows(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
+                     uint32_t* packed, int row_begin, int row_end, int col_begin, int col_end) {
+  const int ws = raw.cols / 2;
+  const int c0 = std::max(0, col_begin), c1 = col_end < 0 ? ws : std::min(ws, col_end);
+  switch (pattern) {
+    case BayerPattern::GRBG: return chromaRowsT<1, 0, 0, 1>(raw, k, packed, row_begin, row_end, c0, c1);
+    case BayerPattern::GBRG: return chromaRowsT<0, 1, 1, 0>(raw, k, packed, row_begin, row_end, c0, c1);
+    case BayerPattern::BGGR: return chromaRowsT<1, 1, 0, 0>(raw, k, packed, row_begin, row_end, c0, c1);
+    default: return chromaRowsT<0, 0, 1, 1>(raw, k, packed, row_begin, row_end, c0, c1);
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void bgrChromaRows(
+    const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin, int row_end,
+    int col_begin, int col_end) {
+  const int w = raw.cols;
+  const int c0 = std::max(0, col_begin), c1 = col_end < 0 ? w : std::min(w, col_end);
+  for (int j = row_begin; j < row_end; ++j) {
+    const uint8_t* in = raw.ptr<uint8_t>(j);
+    uint32_t* o = packed + static_cast<size_t>(w) * j;
+    for (int i = c0; i < c1; ++i) o[i] = packChroma(k, in[3 * i + 2], in[3 * i + 1], in[3 * i]);
+  }
+}
+
+void sampleRgbAt(const cv::Mat& raw, BayerPattern pattern, int i, int j, float rgb[3]) {
+  if (pattern == BayerPattern::None || raw.channels() == 3) {
+    i = std::clamp(i, 0, raw.cols - 1), j = std::clamp(j, 0, raw.rows - 1);
+    const uint8_t* p = raw.ptr<uint8_t>(j) + 3 * i;
+    rgb[0] = p[2], rgb[1] = p[1], rgb[2] = p[0];
+    return;
+  }
+  const int ws = raw.cols / 2, hs = raw.rows / 2;
+  i = std::clamp(i, 0, ws - 1), j = std::clamp(j, 0, hs - 1);
+  const auto s = bayerSites(pattern);
+  auto at = [&](int x, int y) { return static_cast<int>(raw.at<uint8_t>(y, x)); };
+  // Site (sx, sy) of cell (i, j) moved a quarter cell toward the center.
+  auto shifted = [&](int sx, int sy) {
+    const int ni = std::clamp(i + (sx == 0 ? 1 : -1), 0, ws - 1);
+    const int nj = std::clamp(j + (sy == 0 ? 1 : -1), 0, hs - 1);
+    return static_cast<float>(quarterShift(at(2 * i + sx, 2 * j + sy), at(2 * ni + sx, 2 * j + sy),
+                                           at(2 * i + sx, 2 * nj + sy), at(2 * ni + sx, 2 * nj + sy)));
+  };
+  rgb[0] = shifted(s.rx, s.ry);
+  rgb[1] = static_cast<float>((at(2 * i + 1 - s.rx, 2 * j + s.ry) + at(2 * i + s.rx, 2 * j + 1 - s.ry) + 1) >> 1);
+  rgb[2] = shifted(s.bx, s.by);
 }
 
 __attribute__((target_clones("avx2", "default"))) void bgrToRgbxRows(const cv::Mat& raw,

@@ -22,6 +22,26 @@ void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx,
 void bgrToRgbxRows(const cv::Mat& raw, uint8_t* rgbx, int row_begin, int row_end,
                    int col_begin = 0, int col_end = -1);
 
+// Chroma with integer coefficients (1/1024 units), for the packed form below.
+struct ChromaFixed {
+  int a[3], b[3];
+};
+
+// Same subsampling, but each sample is written as its two chroma values
+// (x1024 coefficients, >> 4, i.e. chroma * 64) packed as int16 pairs
+// (a in the low half). This is what the rectification reads; keeping only
+// two 16-bit channels halves its arithmetic.
+void bayerChromaRows(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
+                     uint32_t* packed, int row_begin, int row_end, int col_begin, int col_end);
+void bgrChromaRows(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin,
+                   int row_end, int col_begin, int col_end);
+constexpr float kPackedChromaScale = 64.0f;
+
+// Co-sited RGB of one sample (i, j) (clamped to the image), for the few places
+// that need color after the frame: blob colors and inspection views.
+// raw: the Bayer mosaic (pattern != None) or the BGR image.
+void sampleRgbAt(const cv::Mat& raw, BayerPattern pattern, int i, int j, float rgb[3]);
+
 // Where the red and blue samples of a pattern sit inside the 2x2 cell
 // (x = column offset, y = row offset, each 0 or 1).
 struct BayerSites {

@@ -61,7 +61,9 @@ struct CpuPipeline::Impl {
   int margin = 1;             // cells without a full score window
   double color_radius = 1;    // cells
 
-  std::vector<uint8_t> rgbx;
+  std::vector<uint32_t> packed;  // chroma samples, int16 pairs
+  ChromaFixed chroma_fixed{};
+  cv::Mat last_raw;  // header of the last frame, for colors and inspection
   std::vector<float> ca, cb, score;
   std::vector<int32_t> gdot;
   std::vector<uint32_t> sat;
@@ -107,7 +109,11 @@ struct CpuPipeline::Impl {
     table.build(camera, grid, opt.plane_height, sample_step, pool);
 
     const size_t cells = static_cast<size_t>(grid.width) * grid.height;
-    rgbx.assign(static_cast<size_t>(4) * table.src_width * table.src_height, 0);
+    packed.assign(static_cast<size_t>(table.src_width) * table.src_height, 0);
+    for (int c = 0; c < 3; ++c) {
+      chroma_fixed.a[c] = static_cast<int>(std::lround(chroma.a[c] * 1024));
+      chroma_fixed.b[c] = static_cast<int>(std::lround(chroma.b[c] * 1024));
+    }
     ca.assign(cells, 0);
     cb.assign(cells, 0);
     score.assign(cells, 0);
@@ -184,21 +190,39 @@ struct CpuPipeline::Impl {
     const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
     if (bayer) {
       pool.parallelFor(rows, [&](int b, int e) {
-        subsampleBayerRows(raw, opt.bayer, rgbx.data(), y0 + b, y0 + e, x0, x1);
+        bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
       });
     } else {
-      pool.parallelFor(rows, [&](int b, int e) { bgrToRgbxRows(raw, rgbx.data(), y0 + b, y0 + e, x0, x1); });
+      pool.parallelFor(rows, [&](int b, int e) {
+        bgrChromaRows(raw, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+      });
     }
+    last_raw = raw;
     times.bayer_ms = msSince(t0);
 
     // Frame brightness for the exposure normalisation (sparse sample).
     t0 = std::chrono::steady_clock::now();
     {
-      const int ws = table.src_width;
       uint64_t sum = 0, n = 0;
       for (int y = table.y_begin; y < table.y_end; y += 16) {
-        const uint8_t* row = rgbx.data() + static_cast<size_t>(4) * ws * y;
-        for (int x = table.x_begin; x < table.x_end; x += 4) sum += row[4 * x] + row[4 * x + 1] + row[4 * x + 2], n += 3;
+        if (bayer) {
+          // R + B + mean of the two greens, per 2x2 cell.
+          const auto s = bayerSites(opt.bayer);
+          const uint8_t* r0 = raw.ptr<uint8_t>(2 * y);
+          const uint8_t* r1 = raw.ptr<uint8_t>(2 * y + 1);
+          const uint8_t* rr = s.ry ? r1 : r0;
+          const uint8_t* br = s.by ? r1 : r0;
+          for (int x = table.x_begin; x < table.x_end; x += 4) {
+            const int all = r0[2 * x] + r0[2 * x + 1] + r1[2 * x] + r1[2 * x + 1];
+            const int r = rr[2 * x + s.rx], b = br[2 * x + s.bx];
+            sum += 2 * (r + b) + (all - r - b);
+            n += 6;
+          }
+        } else {
+          const uint8_t* row = raw.ptr<uint8_t>(y);
+          for (int x = table.x_begin; x < table.x_end; x += 4)
+            sum += row[3 * x] + row[3 * x + 1] + row[3 * x + 2], n += 3;
+        }
       }
       luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
     }
@@ -207,7 +231,8 @@ struct CpuPipeline::Impl {
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(table, rgbx.data(), chroma, 1.0f / luma_mean, ca.data(), cb.data(), b, e);
+      rectifyChromaRows(table, packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
+                        cb.data(), b, e);
     });
     times.rectify_ms = msSince(t0);
 
@@ -289,19 +314,19 @@ struct CpuPipeline::Impl {
     return true;
   }
 
-  // Bilinear RGB of grid cell k from the RGBX image.
+  // Bilinear RGB of grid cell k from the last frame (co-sited samples).
   void sampleRgb(size_t k, float rgb[3]) const {
-    const uint32_t* src = reinterpret_cast<const uint32_t*>(rgbx.data());
     const int i = table.index[k];
-    const int stride = table.src_width;
+    const int sx = i % table.src_width, sy = i / table.src_width;
     const float fx = (table.frac[k] & 255) / 256.0f, fy = (table.frac[k] >> 8) / 256.0f;
-    const uint32_t p[4] = {src[i], src[i + 1], src[i + stride], src[i + stride + 1]};
+    const BayerPattern pattern = sample_step == 2 ? opt.bayer : BayerPattern::None;
+    float p[4][3];
+    sampleRgbAt(last_raw, pattern, sx, sy, p[0]);
+    sampleRgbAt(last_raw, pattern, sx + 1, sy, p[1]);
+    sampleRgbAt(last_raw, pattern, sx, sy + 1, p[2]);
+    sampleRgbAt(last_raw, pattern, sx + 1, sy + 1, p[3]);
     const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-    for (int c = 0; c < 3; ++c) {
-      float v = 0;
-      for (int q = 0; q < 4; ++q) v += w[q] * ((p[q] >> (8 * c)) & 255);
-      rgb[c] = v;
-    }
+    for (int c = 0; c < 3; ++c) rgb[c] = w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c];
   }
 
   void meanColor(GridPx g, float rgb[3]) const {

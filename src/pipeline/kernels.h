@@ -17,11 +17,12 @@ struct ChromaTransform {
   static ChromaTransform of(ColorSpace space);
 };
 
-// Rectify rows [y_begin, y_end) of the grid: bilinear RGB from `rgbx`, then
-// chroma times `gain` (1 / frame brightness). Writes planes ca, cb (grid
-// sized, row-major).
-void rectifyChromaRows(const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t,
-                       float gain, float* ca, float* cb, int y_begin, int y_end);
+// Rectify rows [y_begin, y_end) of the grid: bilinear interpolation of the
+// packed chroma samples (see bayerChromaRows; chroma is linear, so
+// interpolating it equals converting interpolated color), times `gain`.
+// Writes planes ca, cb (grid sized, row-major).
+void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float gain, float* ca,
+                       float* cb, int y_begin, int y_end);
 
 // Color gradient dot product (thesis eq. 5.11, §5.2.7.1) at distance `scale`
 // cells (fractional distances interpolate linearly), summed over both chroma

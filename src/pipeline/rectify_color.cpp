@@ -19,13 +19,11 @@ ChromaTransform ChromaTransform::of(ColorSpace space) {
 }
 
 __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
-    const RemapTable& table, const uint8_t* rgbx, const ChromaTransform& t, float gain,
-    float* ca, float* cb, int y_begin, int y_end) {
+    const RemapTable& table, const uint32_t* src, float gain, float* ca, float* cb, int y_begin,
+    int y_end) {
   const int w = table.width;
   const int stride = table.src_width;
-  const uint32_t* src = reinterpret_cast<const uint32_t*>(rgbx);
   const float k = 1.0f / 256.0f;
-  const float a0 = t.a[0], a1 = t.a[1], a2 = t.a[2], b0 = t.b[0], b1 = t.b[1], b2 = t.b[2];
   for (int y = y_begin; y < y_end; ++y) {
     const size_t row = static_cast<size_t>(y) * w;
     const int32_t* idx = table.index.data() + row;
@@ -38,13 +36,11 @@ __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
                      p11 = src[i + stride + 1];
       const float fx = (fr[x] & 255) * k, fy = (fr[x] >> 8) * k;
       const float w11 = fx * fy, w01 = fx - w11, w10 = fy - w11, w00 = 1 - fx - fy + w11;
-      auto ch = [&](int shift) {
-        return w00 * ((p00 >> shift) & 255) + w01 * ((p01 >> shift) & 255) +
-               w10 * ((p10 >> shift) & 255) + w11 * ((p11 >> shift) & 255);
-      };
-      const float r = ch(0), g = ch(8), b = ch(16);
-      oa[x] = (a0 * r + a1 * g + a2 * b) * gain;
-      ob[x] = (b0 * r + b1 * g + b2 * b) * gain;
+      // Low half a, high half b, both int16.
+      auto lo = [](uint32_t p) { return static_cast<float>(static_cast<int16_t>(p & 0xffffu)); };
+      auto hi = [](uint32_t p) { return static_cast<float>(static_cast<int32_t>(p) >> 16); };
+      oa[x] = (w00 * lo(p00) + w01 * lo(p01) + w10 * lo(p10) + w11 * lo(p11)) * gain;
+      ob[x] = (w00 * hi(p00) + w01 * hi(p01) + w10 * hi(p10) + w11 * hi(p11)) * gain;
     }
   }
 }
