@@ -22,6 +22,9 @@ namespace {
 // blur and position error.
 constexpr double kMaxBlobRadiusMm = 25;
 constexpr double kColorRadiusMm = 13;
+// Smallest (max - min) / max of a blob's mean color: pattern colors and the
+// ball are 0.6..0.9, white lines with carpet around them 0.1..0.2.
+constexpr float kMinBlobSaturation = 0.25f;
 // Peaks closer than this belong to the same blob.
 constexpr double kMinBlobDistanceMm = 20;
 // Inner corner of each quadrant left out of the score (see kernels.h).
@@ -306,6 +309,12 @@ struct CpuPipeline::Impl {
       blob.position = grid.toField(blob.grid);
       blob.score = c.score;
       meanColor(blob.grid, blob.rgb);
+      // Every blob the league uses is strongly colored; a near-neutral mean
+      // color is a white line crossing or a gray feature, whose chroma edges
+      // came from the carpet around it.
+      const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+      const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+      if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
       out.blobs.push_back(blob);
     }
     times.peaks_ms = msSince(t0);

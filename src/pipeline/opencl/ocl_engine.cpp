@@ -15,6 +15,7 @@ constexpr float kGradientFixedPoint = 16384.0f;  // as pipeline/kernels.h
 constexpr int kHeaderWords = 4;                  // DV_RESULT_HEADER in common.cl
 constexpr int kPeakWords = 6;                    // floats per OclPeak
 constexpr int kFirstPeaksRead = 256;             // peaks read with the counters
+constexpr float kPackedChromaScale = 64.0f;      // as pipeline/bayer_subsample.h
 
 static_assert(sizeof(OclPeak) == kPeakWords * sizeof(float), "OclPeak must match dv_peak");
 
@@ -41,7 +42,7 @@ double eventMs(cl_event start, cl_event end) {
 struct OclEngine::Buffers {
   cl_mem input_host = nullptr;  // CL_MEM_ALLOC_HOST_PTR: pinned / shared frame memory
   cl_mem input_dev = nullptr;   // discrete devices only
-  cl_mem rgbx = nullptr, remap_index = nullptr, remap_frac = nullptr, mask = nullptr;
+  cl_mem packed = nullptr, remap_index = nullptr, remap_frac = nullptr, mask = nullptr;
   cl_mem chroma = nullptr, gdot = nullptr, sat = nullptr, score = nullptr;
   cl_mem results = nullptr, results_host = nullptr, half = nullptr;
   uint32_t* results_mapped = nullptr;  // pinned host copy of the results header + peaks
@@ -66,7 +67,7 @@ struct OclEngine::Buffers {
     releaseEvents();
     for (cl_kernel k : {subsample, rectify, gradient, sat_rows, sat_cols, score_k, peaks})
       if (k) clReleaseKernel(k);
-    for (cl_mem m : {input_host, input_dev, rgbx, remap_index, remap_frac, mask, chroma, gdot, sat,
+    for (cl_mem m : {input_host, input_dev, packed, remap_index, remap_frac, mask, chroma, gdot, sat,
                      score, results, results_host, half})
       if (m) clReleaseMemObject(m);
   }
@@ -104,7 +105,13 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   fp64_ = ctx_->fp64();
   capacity_ = std::max({1024, 4 * c.max_blobs, 16});
   const int ws = src_width_, hs = src_height_;
-  luma_count_ = static_cast<float>(3.0 * ((hs + 15) / 16) * ((ws + 3) / 4));
+  {
+    // Samples of the brightness sum, as the CPU reference counts them.
+    const int rows = std::max(0, c.region_y_end - c.region_y_begin);
+    const int cols = std::max(0, c.region_x_end - c.region_x_begin);
+    const double n = (c.bayer ? 6.0 : 3.0) * ((rows + 15) / 16) * ((cols + 3) / 4);
+    luma_count_ = static_cast<float>(std::max(1.0, n));
+  }
   peaks_.reserve(capacity_);
 
   cl_context cx = ctx_->context();
@@ -121,7 +128,7 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   if (!c.pinned_input) zero_copy_ = false;
   b_->input_host = make(input_flags, frame_bytes_, nullptr, "frame");
   if (!zero_copy_) b_->input_dev = make(CL_MEM_READ_ONLY, frame_bytes_, nullptr, "device frame");
-  b_->rgbx = make(CL_MEM_READ_WRITE, 4ull * ws * hs, nullptr, "RGBX");
+  b_->packed = make(CL_MEM_READ_WRITE, 4ull * ws * hs, nullptr, "packed chroma");
   b_->remap_index = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 4, c.remap_index.data(), "remap");
   b_->remap_frac = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 2, c.remap_frac.data(), "remap");
   b_->mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells, c.peak_mask.data(), "peak mask");
@@ -185,8 +192,11 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   };
   const cl_mem input = zero_copy_ ? b_->input_host : b_->input_dev;
 
+  const cl_int4 ka = {{c.chroma_a[0], c.chroma_a[1], c.chroma_a[2], 0}};
+  const cl_int4 kb = {{c.chroma_b[0], c.chroma_b[1], c.chroma_b[2], 0}};
+  const cl_int4 region = {{c.region_x_begin, c.region_x_end, c.region_y_begin, c.region_y_end}};
   if (c.bayer) {
-    b_->subsample = ctx_->createKernel("bayer_subsample");
+    b_->subsample = ctx_->createKernel("bayer_chroma");
     argMem(b_->subsample, 0, input);
     argInt(b_->subsample, 1, frame_stride_);
     argInt(b_->subsample, 2, ws);
@@ -195,16 +205,22 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     argInt(b_->subsample, 5, c.red_y);
     argInt(b_->subsample, 6, c.blue_x);
     argInt(b_->subsample, 7, c.blue_y);
-    argMem(b_->subsample, 8, b_->rgbx);
-    argMem(b_->subsample, 9, b_->results);
+    arg(b_->subsample, 8, sizeof ka, &ka);
+    arg(b_->subsample, 9, sizeof kb, &kb);
+    arg(b_->subsample, 10, sizeof region, &region);
+    argMem(b_->subsample, 11, b_->packed);
+    argMem(b_->subsample, 12, b_->results);
   } else {
-    b_->subsample = ctx_->createKernel("bgr_to_rgbx");
+    b_->subsample = ctx_->createKernel("bgr_chroma");
     argMem(b_->subsample, 0, input);
     argInt(b_->subsample, 1, frame_stride_);
     argInt(b_->subsample, 2, ws);
     argInt(b_->subsample, 3, hs);
-    argMem(b_->subsample, 4, b_->rgbx);
-    argMem(b_->subsample, 5, b_->results);
+    arg(b_->subsample, 4, sizeof ka, &ka);
+    arg(b_->subsample, 5, sizeof kb, &kb);
+    arg(b_->subsample, 6, sizeof region, &region);
+    argMem(b_->subsample, 7, b_->packed);
+    argMem(b_->subsample, 8, b_->results);
   }
   {
     // The brightness reduction needs a power-of-two group of at most 256.
@@ -214,19 +230,16 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   }
 
   b_->rectify = ctx_->createKernel("rectify_chroma");
-  argMem(b_->rectify, 0, b_->rgbx);
+  argMem(b_->rectify, 0, b_->packed);
   argInt(b_->rectify, 1, ws);
   argMem(b_->rectify, 2, b_->remap_index);
   argMem(b_->rectify, 3, b_->remap_frac);
   argInt(b_->rectify, 4, c.grid_width);
   argInt(b_->rectify, 5, c.grid_height);
-  const cl_float4 ca = {{c.chroma_a[0], c.chroma_a[1], c.chroma_a[2], 0}};
-  const cl_float4 cb = {{c.chroma_b[0], c.chroma_b[1], c.chroma_b[2], 0}};
-  arg(b_->rectify, 6, sizeof ca, &ca);
-  arg(b_->rectify, 7, sizeof cb, &cb);
-  argFloat(b_->rectify, 8, luma_count_);
-  argMem(b_->rectify, 9, b_->results);
-  argMem(b_->rectify, 10, b_->chroma);
+  argFloat(b_->rectify, 6, luma_count_);
+  argFloat(b_->rectify, 7, kPackedChromaScale);
+  argMem(b_->rectify, 8, b_->results);
+  argMem(b_->rectify, 9, b_->chroma);
 
   b_->gradient = ctx_->createKernel("gradient_dot");
   const int k = static_cast<int>(std::floor(c.gradient_scale));
@@ -293,18 +306,23 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argFloat(b_->peaks, 10, na);
   argInt(b_->peaks, 11, c.energy_window);
   argFloat(b_->peaks, 12, c.energy_floor);
-  argMem(b_->peaks, 13, b_->rgbx);
-  argInt(b_->peaks, 14, ws);
-  argMem(b_->peaks, 15, b_->remap_index);
-  argMem(b_->peaks, 16, b_->remap_frac);
+  argMem(b_->peaks, 13, input);
+  argInt(b_->peaks, 14, frame_stride_);
+  argInt(b_->peaks, 15, c.bayer ? 1 : 0);
+  const cl_int4 sites = {{c.red_x, c.red_y, c.blue_x, c.blue_y}};
+  arg(b_->peaks, 16, sizeof sites, &sites);
+  argInt(b_->peaks, 17, ws);
+  argInt(b_->peaks, 18, hs);
+  argMem(b_->peaks, 19, b_->remap_index);
+  argMem(b_->peaks, 20, b_->remap_frac);
   if (fp64_) {
     const double r = c.color_radius;
-    arg(b_->peaks, 17, sizeof r, &r);
+    arg(b_->peaks, 21, sizeof r, &r);
   } else {
-    argFloat(b_->peaks, 17, static_cast<float>(c.color_radius));
+    argFloat(b_->peaks, 21, static_cast<float>(c.color_radius));
   }
-  argMem(b_->peaks, 18, b_->results);
-  argInt(b_->peaks, 19, capacity_);
+  argMem(b_->peaks, 22, b_->results);
+  argInt(b_->peaks, 23, capacity_);
 
   size_t pixel_max = std::min(kernelMax(b_->rectify), kernelMax(b_->gradient));
   pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), size_t{256}});
@@ -471,8 +489,8 @@ std::vector<T> readAll(cl_command_queue q, cl_mem m, size_t count) {
 
 }  // namespace
 
-std::vector<uint8_t> OclEngine::readRgbx() const {
-  return readAll<uint8_t>(ctx_->queue(), b_->rgbx, 4ull * src_width_ * src_height_);
+std::vector<uint32_t> OclEngine::readPackedChroma() const {
+  return readAll<uint32_t>(ctx_->queue(), b_->packed, 1ull * src_width_ * src_height_);
 }
 std::vector<float> OclEngine::readChroma() const {
   return readAll<float>(ctx_->queue(), b_->chroma, 2ull * cfg_.grid_width * cfg_.grid_height);

@@ -31,7 +31,12 @@ struct OclEngineConfig {
   std::vector<uint16_t> remap_frac;
   std::vector<uint8_t> peak_mask;  // 1 where a peak may be reported
 
-  float chroma_a[3] = {0, 0, 0}, chroma_b[3] = {0, 0, 0};
+  // The samples the table reads: columns [x_begin, x_end), rows [y_begin,
+  // y_end) of the subsampled image; the frame brightness is measured there.
+  int region_x_begin = 0, region_x_end = 0, region_y_begin = 0, region_y_end = 0;
+
+  // Chroma coefficients in 1/1024 (pipeline/bayer_subsample.h, ChromaFixed).
+  int chroma_a[3] = {0, 0, 0}, chroma_b[3] = {0, 0, 0};
   double gradient_scale = 1;  // cells
   bool circle_score = false;
   int quadrant_radius = 2;    // cells (quadrant score)
@@ -93,7 +98,7 @@ class OclEngine {
   const std::string& error() const { return error_; }
 
   // Stage outputs of the last frame, read back for tests (not for hot paths).
-  std::vector<uint8_t> readRgbx() const;      // 4 bytes per RGBX sample
+  std::vector<uint32_t> readPackedChroma() const;  // int16 pairs per subsampled sample
   std::vector<float> readChroma() const;      // 2 floats per cell
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)

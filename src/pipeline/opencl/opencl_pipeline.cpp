@@ -71,14 +71,18 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   cfg.threshold = static_cast<float>(opt_.threshold);
   cfg.max_blobs = opt_.max_blobs;
   const ChromaTransform chroma = ChromaTransform::of(opt_.color);
-  std::copy(chroma.a, chroma.a + 3, cfg.chroma_a);
-  std::copy(chroma.b, chroma.b + 3, cfg.chroma_b);
+  for (int i = 0; i < 3; ++i) {  // as CpuPipeline's ChromaFixed
+    cfg.chroma_a[i] = static_cast<int>(std::lround(chroma.a[i] * 1024));
+    cfg.chroma_b[i] = static_cast<int>(std::lround(chroma.b[i] * 1024));
+  }
 
   // The remap table through the CPU reference's own builder.
   {
     ThreadPool pool(opt_.threads);
     RemapTable table;
     table.build(camera_, grid_, opt_.plane_height, sample_step, pool);
+    cfg.region_x_begin = table.x_begin, cfg.region_x_end = table.x_end;
+    cfg.region_y_begin = table.y_begin, cfg.region_y_end = table.y_end;
     cfg.remap_index = std::move(table.index);
     cfg.remap_frac = std::move(table.frac);
     // A peak counts only where its whole window is seen (as the CPU reference).
