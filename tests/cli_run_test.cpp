@@ -10,6 +10,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <sstream>
 
 #include "dotvision/ssl_wrapper.pb.h"
@@ -142,6 +144,36 @@ TEST_F(CliRun, MissingCameraIdInGeometryIsOneClearError) {
   EXPECT_NE(r.err.find("geometry.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("camera id 7"), std::string::npos) << r.err;
   EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+}
+
+TEST_F(CliRun, MalformedGeometryIsOneClearError) {
+  std::ofstream(path("geometry.json")) << "{\"field\": {\"fieldLength\": 9000,";
+  const CliResult r = cli("run --source " + scene("frame_0_00000.pgm") + " --geometry " + path("geometry.json") +
+                          " --camera-id 0 --no-publish");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(path("geometry.json")), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+}
+
+TEST_F(CliRun, VideoSourceRunsToItsEnd) {
+  cv::VideoWriter writer(path("clip.avi"), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 60,
+                         cv::Size(1224, 1024));
+  if (!writer.isOpened()) GTEST_SKIP() << "no FFmpeg video writer in this OpenCV build";
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat raw = cv::imread(scene("frame_0_0000" + std::to_string(i) + ".pgm"), cv::IMREAD_UNCHANGED), bgr;
+    cv::cvtColor(raw, bgr, cv::COLOR_BayerBG2BGR);  // RGGB sensor = OpenCV's "BG"
+    writer.write(bgr);
+  }
+  writer.release();
+  const CliResult r = cli("run --source " + path("clip.avi") + " --geometry " + scene("geometry.json") +
+                          " --camera-id 0 --no-publish --jsonl " + path("det.jsonl"));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("3 processed, 0 skipped"), std::string::npos) << r.out;
+  const auto jl = lines(readAll(path("det.jsonl")));
+  ASSERT_EQ(jl.size(), 3u);
+  ssl::SSL_WrapperPacket p;
+  parseCanonicalJson(jl[2], p, "det.jsonl");
+  EXPECT_NEAR(p.detection().t_capture(), 2 / 60.0, 1e-3);  // container time
 }
 
 TEST_F(CliRun, UnreadableVideoAndMissingSourceAreInputErrors) {

@@ -15,6 +15,7 @@
 #include "app/camera_processor.h"
 #include "app/commands.h"
 #include "app/debug_views.h"
+#include "app/synthetic_source.h"
 #include "core/error.h"
 #include "dotvision/ssl_wrapper.pb.h"
 #include "eval/metrics.h"
@@ -334,45 +335,43 @@ int runSynthetic(const RunArgs& a) {
                        ? loadScene(a.scene)
                        : presetScene(a.scene);
   if (a.max_frames >= 0) spec.frames = static_cast<int>(std::min<long>(spec.frames, a.max_frames));
-  const Renderer renderer(spec);
-  const Geometry geometry = renderer.geometry();
 
   std::vector<size_t> camera_indices;
-  for (size_t i = 0; i < spec.cameras.size(); ++i)
+  std::string ids;
+  for (size_t i = 0; i < spec.cameras.size(); ++i) {
+    ids += (ids.empty() ? "" : ", ") + std::to_string(spec.cameras[i].calib.camera_id);
     if (!a.camera_id || spec.cameras[i].calib.camera_id == *a.camera_id) camera_indices.push_back(i);
+  }
   if (camera_indices.empty())
-    throw InputError("scene '" + spec.name + "'", "has no camera with id " + std::to_string(*a.camera_id) +
-                                                     " (cameras: " + cameraIds(geometry) + ")");
+    throw InputError("scene '" + spec.name + "'",
+                     "has no camera with id " + std::to_string(*a.camera_id) + " (cameras: " + ids + ")");
+  SyntheticSource source(spec, camera_indices);
+  const Geometry geometry = source.renderer().geometry();
 
   Outputs outputs(a, toProto(geometry));
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, true, {}};
+  // Channel k serves scene camera camera_indices[k].
   std::vector<Channel> channels(camera_indices.size());
-  for (size_t k = 0; k < camera_indices.size(); ++k)
+  std::vector<size_t> channel_of(spec.cameras.size(), 0);
+  for (size_t k = 0; k < camera_indices.size(); ++k) {
     channels[k].calibration = spec.cameras[camera_indices[k]].calib;
+    channel_of[camera_indices[k]] = k;
+  }
 
   const MatchOptions match;
   Frame frame;
-  frame.format = spec.bayer ? PixelFormat::BayerRggb8 : PixelFormat::Bgr8;
-  for (int n = 0; n < spec.frames; ++n) {
-    for (size_t k = 0; k < camera_indices.size(); ++k) {
-      RenderedFrame rendered = renderer.render(n, camera_indices[k]);
-      frame.image = rendered.image;
-      frame.index = static_cast<uint32_t>(n);
-      frame.t_capture = n / spec.fps;
-      frame.name = "scene '" + spec.name + "' camera " + std::to_string(channels[k].calibration.camera_id) +
-                   " frame " + std::to_string(n);
-      const bool ok = processFrame(state, channels[k], frame);
-      scoreFrame(rendered.truth, ok ? &channels[k].packet.detection() : nullptr, match, state.truth_metrics);
-    }
+  while (source.next(frame)) {
+    Channel& ch = channels[channel_of[source.cameraIndex()]];
+    const bool ok = processFrame(state, ch, frame);
+    scoreFrame(source.truth(), ok ? &ch.packet.detection() : nullptr, match, state.truth_metrics);
   }
   outputs.finish();
   std::string cams;
   for (const Channel& c : channels) cams += (cams.empty() ? "" : ", ") + std::to_string(c.calibration.camera_id);
+  const CameraCalibration& first = channels.front().calibration;
   printSummary(state,
-               "synthetic scene '" + spec.name + "' (" + std::to_string(spec.frames) + " frames, camera " +
-                   cams + ", " + std::to_string(spec.cameras[camera_indices[0]].calib.image_width) + "x" +
-                   std::to_string(spec.cameras[camera_indices[0]].calib.image_height) +
-                   (spec.bayer ? " Bayer" : " RGB") + ")",
+               source.describe() + ", camera " + cams + ", " + std::to_string(first.image_width) + "x" +
+                   std::to_string(first.image_height) + (spec.bayer ? " Bayer" : " RGB"),
                channels);
   return kExitOk;
 }
