@@ -23,6 +23,8 @@ constexpr double kMaxBlobRadiusMm = 25;
 constexpr double kColorRadiusMm = 13;
 constexpr double kInnerCornerMm = 10;
 constexpr float kEnergyFloor = 0.01f;
+constexpr double kMinBlobDistanceMm = 20;
+constexpr float kMinBlobSaturation = 0.25f;
 
 }  // namespace
 
@@ -149,12 +151,28 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     error_ = engine_->error();
     return false;
   }
+  // As the CPU reference: strongest first, a weaker peak within
+  // kMinBlobDistanceMm of a kept blob is the same blob, near-neutral colors
+  // are line crossings or gray features.
+  const double min_d2 = std::pow(kMinBlobDistanceMm / grid_.scale, 2);
   for (const auto& p : engine_->peaks()) {
+    bool duplicate = false;
+    for (const auto& kept : out.blobs) {
+      const double dx = kept.grid.x - p.cell_x, dy = kept.grid.y - p.cell_y;
+      if (dx * dx + dy * dy < min_d2) {
+        duplicate = true;
+        break;
+      }
+    }
+    if (duplicate) continue;
     Blob b;
     b.grid = {p.x, p.y};
     b.position = grid_.toField(b.grid);
     b.score = p.score;
     b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
+    const float hi = std::max({b.rgb[0], b.rgb[1], b.rgb[2]});
+    const float lo = std::min({b.rgb[0], b.rgb[1], b.rgb[2]});
+    if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
     out.blobs.push_back(b);
   }
   const auto& t = engine_->times();
