@@ -11,7 +11,7 @@ namespace {
 
 struct Frame {
   dv::SceneSpec spec;
-  cv::Mat bgr;
+  cv::Mat image;
   dv::CameraCalibration truth;
 };
 
@@ -23,7 +23,7 @@ const Frame& frame() {
                                               {1, 0, 0}));
     out.spec.robots = dv::placeRandomRobots(out.spec, 0, 6, 6, 3);
     dv::Renderer r(out.spec);
-    out.bgr = dv::toBgrImage(r.render(0, 0).image, "rendered");
+    out.image = r.render(0, 0).image;  // Bayer mosaic
     out.truth = out.spec.cameras[0].calib;
     return out;
   }();
@@ -33,7 +33,7 @@ const Frame& frame() {
 void BM_ObserveLines(benchmark::State& state) {
   const Frame& f = frame();
   const auto region = *f.spec.field.cameraRegion(0, 2);
-  for (auto _ : state) benchmark::DoNotOptimize(dv::observeLines(f.bgr, f.spec.field, region));
+  for (auto _ : state) benchmark::DoNotOptimize(dv::observeLines(f.image, f.spec.field, region));
 }
 
 void BM_CalibrateFourPoint(benchmark::State& state) {
@@ -46,7 +46,7 @@ void BM_CalibrateFourPoint(benchmark::State& state) {
   const dv::CameraModel cam(f.truth);
   for (const auto& p : dv::regionCornersCounterClockwise(r.x_min, r.x_max, r.y_min, r.y_max))
     req.points.push_back({p, *cam.fieldToImage(p)});
-  for (auto _ : state) benchmark::DoNotOptimize(dv::calibrateCamera(f.bgr, f.spec.field, req));
+  for (auto _ : state) benchmark::DoNotOptimize(dv::calibrateCamera(f.image, f.spec.field, req));
 }
 
 void BM_CalibrateAutomatic(benchmark::State& state) {
@@ -55,7 +55,7 @@ void BM_CalibrateAutomatic(benchmark::State& state) {
   req.camera_id = 0;
   req.num_cameras = 2;
   req.camera_height_mm = 4000;
-  for (auto _ : state) benchmark::DoNotOptimize(dv::calibrateCamera(f.bgr, f.spec.field, req));
+  for (auto _ : state) benchmark::DoNotOptimize(dv::calibrateCamera(f.image, f.spec.field, req));
 }
 
 BENCHMARK(BM_ObserveLines)->Unit(benchmark::kMillisecond)->Iterations(3);

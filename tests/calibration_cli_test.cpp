@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "calibration_scene.h"
+#include "geometry/calibration/calibration_quality.h"
 #include "geometry/calibration/point_pose.h"
 #include "geometry/geometry_io.h"
 

@@ -15,7 +15,7 @@ namespace {
 
 struct Rendered {
   SceneSpec spec;
-  cv::Mat bgr;
+  cv::Mat image;
   CameraCalibration truth;
 };
 
@@ -28,7 +28,7 @@ Rendered render(FieldModel field, SceneCamera cam, int robots, uint64_t seed) {
   r.spec.ball.position = {cam.calib.camera_id == 0 ? -1500.0 : 1500.0, 300, 21.5};
   r.spec.robots = placeRandomRobots(r.spec, 0, robots / 2, robots - robots / 2, seed);
   Renderer renderer(r.spec);
-  r.bgr = toBgrImage(renderer.render(0, 0).image, "rendered frame");
+  r.image = renderer.render(0, 0).image;  // Bayer mosaic, as a camera delivers it
   r.truth = cam.calib;
   return r;
 }
@@ -57,7 +57,7 @@ TEST(CalibrationRendered, TopDownPincushionFourCorners) {
   CalibrationRequest req;
   req.camera_id = 0, req.num_cameras = 2, req.camera_height_mm = 4000;
   req.points = regionCorners(r, 2);
-  const auto out = calibrateCamera(r.bgr, r.spec.field, req);
+  const auto out = calibrateCamera(r.image, r.spec.field, req);
   ASSERT_FALSE(out.problem) << *out.problem;
   EXPECT_LE(gridError(r, out.calibration, "rendered top-down pincushion"), 2.0);
 }
@@ -69,7 +69,7 @@ TEST(CalibrationRendered, StrongBarrelPrincipalPointOffFourCorners) {
   CalibrationRequest req;
   req.camera_id = 3, req.num_cameras = 4, req.camera_height_mm = 5000;
   req.points = regionCorners(r, 4);
-  const auto out = calibrateCamera(r.bgr, r.spec.field, req);
+  const auto out = calibrateCamera(r.image, r.spec.field, req);
   ASSERT_FALSE(out.problem) << *out.problem;
   EXPECT_LE(gridError(r, out.calibration, "rendered strong barrel, pp 40 px off"), 2.0);
 }
@@ -90,7 +90,7 @@ TEST(CalibrationRendered, SideViewFourPoints) {
       if (px && px->u > 30 && px->v > 30 && px->u < 1194 && px->v < 994) req.points.push_back({{x, y, 0}, *px});
     }
   ASSERT_GE(req.points.size(), 4u);
-  const auto out = calibrateCamera(r.bgr, f, req);
+  const auto out = calibrateCamera(r.image, f, req);
   ASSERT_FALSE(out.problem) << *out.problem;
   EXPECT_LE(gridError(r, out.calibration, "rendered side view"), 2.0);
 }
@@ -100,7 +100,7 @@ TEST(CalibrationRendered, AutomaticTiltedCamera) {
                             makeCamera(1, {-2500, 1500, 4500}, {-3200, 2400, 0}, 760, 0.1, {10, -6}, 1224, 1024), 10, 14);
   CalibrationRequest req;
   req.camera_id = 1, req.num_cameras = 4, req.camera_height_mm = 4500;
-  const auto out = calibrateCamera(r.bgr, r.spec.field, req);
+  const auto out = calibrateCamera(r.image, r.spec.field, req);
   ASSERT_FALSE(out.problem) << *out.problem;
   EXPECT_TRUE(out.automatic);
   EXPECT_LE(gridError(r, out.calibration, "rendered automatic tilted"), 3.0);

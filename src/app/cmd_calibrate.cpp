@@ -98,7 +98,7 @@ CommandFn addCalibrateCommand(CLI::App& root) {
     geometry.cameras.clear();
     if (geometry.field.lines.empty())
       throw InputError(opt->geometry, "the field has no lines to calibrate on");
-    const cv::Mat bgr = loadCalibrationImage(opt->image);
+    const cv::Mat image = loadCalibrationImage(opt->image);
 
     CalibrationRequest req;
     req.camera_id = uint32_t(opt->camera_id);
@@ -117,7 +117,7 @@ CommandFn addCalibrateCommand(CLI::App& root) {
       throw InputError("command line", "--point: four or more are needed, got " + std::to_string(opt->points.size()));
 
     const auto start = std::chrono::steady_clock::now();
-    const CalibrationOutcome out = calibrateCamera(bgr, geometry.field, req);
+    const CalibrationOutcome out = calibrateCamera(image, geometry.field, req);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& m = out.measures;
     std::printf(
@@ -135,7 +135,7 @@ CommandFn addCalibrateCommand(CLI::App& root) {
     geometry.cameras.push_back(out.calibration);
     saveGeometry(geometry, opt->out);
     const std::string overlay = opt->overlay.empty() ? defaultOverlayPath(opt->out) : opt->overlay;
-    if (!cv::imwrite(overlay, drawModelOverlay(bgr, out.calibration, geometry.field)))
+    if (!cv::imwrite(overlay, drawModelOverlay(toBgrImage(image, opt->image), out.calibration, geometry.field)))
       throw InputError(overlay, "cannot write the overlay image");
     return kExitOk;
   };

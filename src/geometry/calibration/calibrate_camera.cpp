@@ -22,20 +22,20 @@ FieldRect cameraRegionFor(const FieldModel& field, uint32_t camera_id, unsigned 
   return *region;
 }
 
-LineObservation observeLines(const cv::Mat& bgr, const FieldModel& field, const FieldRect& region) {
+LineObservation observeLines(const cv::Mat& image, const FieldModel& field, const FieldRect& region) {
   LineObservation obs;
   // Expected scale: the camera sees its region plus some overlap.
   const double area = (region.x_max - region.x_min) * (region.y_max - region.y_min) * 1.4;
-  const double mm_per_px = std::sqrt(area / (double(bgr.cols) * bgr.rows));
+  const double mm_per_px = std::sqrt(area / (double(image.cols) * image.rows));
   obs.half_width_px = halfLineWidthPx(mm_per_px, field.line_thickness);
   LinePixelOptions lp;
   lp.half_width_px = obs.half_width_px;
-  obs.mask = detectLinePixels(bgr, lp);
+  obs.mask = detectLinePixels(image, lp);
   obs.distance = lineDistanceTransform(obs.mask);
   obs.pixels = maskPixels(obs.mask, 60000);
   obs.groups = groupSegments(detectLineSegments(obs.mask));
   // Pixels only for groups long enough to matter.
-  const double min_extent = 0.15 * std::min(bgr.cols, bgr.rows);
+  const double min_extent = 0.15 * std::min(image.cols, image.rows);
   size_t keep = 0;
   while (keep < obs.groups.size() && obs.groups[keep].extent_px >= min_extent) ++keep;
   obs.groups.resize(keep);
@@ -55,7 +55,7 @@ PixelDistortion estimateDistortion(const LineObservation& obs, int w, int h,
 }
 
 void finish(CalibrationOutcome& r, const LineObservation& obs, const FieldModel& field,
-            const FieldRect& region, const cv::Mat& bgr) {
+            const FieldRect& region) {
   r.measures = measureCalibration(r.calibration, field, obs.pixels, obs.distance);
   QualityGateOptions g;
   g.region = region;
@@ -81,11 +81,13 @@ std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool h
 
 }  // namespace
 
-CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
+CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field,
                                    const CalibrationRequest& req) {
   if (field.lines.empty()) throw InputError(req.source, "the field has no lines to calibrate on");
   const FieldRect region = cameraRegionFor(field, req.camera_id, req.num_cameras, req.source);
-  const int w = bgr.cols, h = bgr.rows;
+  if (image.empty() || image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3))
+    throw InputError(req.source, "expected an 8-bit Bayer mosaic or BGR image");
+  const int w = image.cols, h = image.rows;
   for (const auto& p : req.points)
     if (!(p.image.u >= 0 && p.image.v >= 0 && p.image.u <= w - 1 && p.image.v <= h - 1))
       throw InputError(req.source, "point (" + std::to_string(p.image.u) + ", " + std::to_string(p.image.v) +
@@ -96,7 +98,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
   if (req.camera_height_mm && !(*req.camera_height_mm > 0))
     throw InputError(req.source, "the camera height must be positive");
 
-  const LineObservation obs = observeLines(bgr, field, region);
+  const LineObservation obs = observeLines(image, field, region);
   if (obs.pixels.size() < 300 || obs.groups.empty())
     throw InputError(req.source, "no field lines found in the image (" + std::to_string(obs.pixels.size()) +
                                      " line pixels, " + std::to_string(obs.groups.size()) + " line groups)");
@@ -120,7 +122,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
     const auto fit = refineOnLines(pose->params, obs.pixels, model, req.points, lf);
     r.refinement_accepted = fit.improved;
     r.calibration = fit.params.toCalibration(req.camera_id, w, h);
-    finish(r, obs, field, region, bgr);
+    finish(r, obs, field, region);
     if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
     return r;
   }
@@ -136,7 +138,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
   }
   r.refinement_accepted = true;
   r.calibration = found.params->toCalibration(req.camera_id, w, h);
-  finish(r, obs, field, region, bgr);
+  finish(r, obs, field, region);
   if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
   if (r.problem)
     r.problem = "cannot decide the camera pose from the lines alone (" + *r.problem +

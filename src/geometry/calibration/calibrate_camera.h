@@ -39,7 +39,8 @@ struct LineObservation {
   int half_width_px = 3;
 };
 
-LineObservation observeLines(const cv::Mat& bgr, const FieldModel& field, const FieldRect& region);
+// `image`: a Bayer RGGB mosaic (CV_8UC1) or BGR (CV_8UC3).
+LineObservation observeLines(const cv::Mat& image, const FieldModel& field, const FieldRect& region);
 
 struct CalibrationOutcome {
   CameraCalibration calibration;
@@ -59,7 +60,7 @@ FieldRect cameraRegionFor(const FieldModel& field, uint32_t camera_id, unsigned 
 // Throws InputError(request.source, ...) for unusable input (no field
 // lines in the image, points outside the image, too few points); quality
 // problems are returned in `problem`.
-CalibrationOutcome calibrateCamera(const cv::Mat& bgr, const FieldModel& field,
+CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field,
                                    const CalibrationRequest& request);
 
 }  // namespace dv

@@ -48,13 +48,26 @@ bool pointReprojection(const T* intr, const T* rot, const T* pos, const FieldPoi
   const T rel[3] = {T(p.x) - pos[0], T(p.y) - pos[1], T(p.z) - pos[2]};
   T pc[3];
   ceres::AngleAxisRotatePoint(rot, rel, pc);
-  if (!(pc[2] > T(1e-6))) return false;
+  if (!(pc[2] > T(1e-6))) {
+    // Behind the camera: a flat, large residual, so that the solver turns
+    // away instead of failing (a failed first evaluation stops Ceres).
+    residual[0] = residual[1] = T(1e4);
+    return true;
+  }
   const T nx = (T(px.u) - intr[1]) / intr[0];
   const T ny = (T(px.v) - intr[2]) / intr[0];
   const T s = T(1) + intr[3] * (nx * nx + ny * ny);
   residual[0] = intr[0] * (nx * s - pc[0] / pc[2]);
   residual[1] = intr[0] * (ny * s - pc[1] / pc[2]);
   return true;
+}
+
+// Whether a field point lies in front of the camera.
+inline bool inFrontOfCamera(const double* rot, const double* pos, const FieldPoint& p) {
+  const double rel[3] = {p.x - pos[0], p.y - pos[1], p.z - pos[2]};
+  double pc[3];
+  ceres::AngleAxisRotatePoint(rot, rel, pc);
+  return pc[2] > 1e-6;
 }
 
 }  // namespace dv

@@ -30,7 +30,24 @@ cv::Mat toBgrImage(const cv::Mat& image, const std::string& source) {
 cv::Mat loadCalibrationImage(const std::string& path) {
   const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (raw.empty()) throw InputError(path, "cannot read an image from this file");
+  if (raw.depth() != CV_8U) throw InputError(path, "expected an 8-bit image");
+  if (raw.channels() == 1) {
+    toBgrImage(raw, path);  // validates the size
+    return raw;
+  }
   return toBgrImage(raw, path);
+}
+
+cv::Mat lineBrightness(const cv::Mat& image) {
+  cv::Mat gray;
+  if (image.channels() == 1) {
+    const cv::Matx33f binomial(1, 2, 1, 2, 4, 2, 1, 2, 1);
+    cv::filter2D(image, gray, CV_8U, cv::Mat(binomial * (1.0f / 16)), cv::Point(-1, -1), 0,
+                 cv::BORDER_REFLECT_101);
+  } else {
+    cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  }
+  return gray;
 }
 
 int halfLineWidthPx(double mm_per_px, double line_thickness_mm) {
@@ -39,9 +56,12 @@ int halfLineWidthPx(double mm_per_px, double line_thickness_mm) {
   return std::clamp(int(std::ceil(width_px / 2)) + 1, 2, 12);
 }
 
-cv::Mat detectLinePixels(const cv::Mat& bgr, const LinePixelOptions& o) {
-  cv::Mat gray;
-  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+cv::Mat detectLinePixels(const cv::Mat& image, const LinePixelOptions& o) {
+  const cv::Mat gray = lineBrightness(image);
+  // Colour is judged on a smoothed image: demosaicing paints thin white
+  // lines with alternating colour fringes.
+  cv::Mat bgr = image.channels() == 1 ? toBgrImage(image, "image") : image;
+  cv::blur(bgr, bgr, cv::Size(5, 5));
   cv::Mat g16;
   gray.convertTo(g16, CV_16S);
   const int h = std::max(1, o.half_width_px);

@@ -26,16 +26,22 @@ struct LinePixelOptions {
 // 8-bit single channel is a Bayer RGGB mosaic (as a `run` source); 3 channel
 // is BGR. Returns BGR. Throws InputError(source, ...) for other formats.
 cv::Mat toBgrImage(const cv::Mat& image, const std::string& source);
-// Reads an image file like a `run` source; throws InputError(path, ...) when
-// it cannot be read or is empty.
+// Reads an image file like a `run` source (Bayer mosaic kept as it is, colour
+// as BGR); throws InputError(path, ...) when it cannot be read, is empty or
+// has an unsupported format.
 cv::Mat loadCalibrationImage(const std::string& path);
+// Brightness for line detection. A Bayer mosaic is filtered with the 3x3
+// binomial kernel, which weighs R, G, B as 1:2:1 at every pixel, so thin
+// lines keep their shape instead of the colour fringes of demosaicing.
+cv::Mat lineBrightness(const cv::Mat& image);
 
 // The half line width for the ridge detector from the expected field scale
 // (mm per pixel) and the painted line thickness (mm).
 int halfLineWidthPx(double mm_per_px, double line_thickness_mm);
 
-// CV_8UC1 mask, 255 at line pixels. `bgr` is CV_8UC3.
-cv::Mat detectLinePixels(const cv::Mat& bgr, const LinePixelOptions& options);
+// CV_8UC1 mask, 255 at line pixels. `image` is a Bayer mosaic (CV_8UC1) or
+// BGR (CV_8UC3).
+cv::Mat detectLinePixels(const cv::Mat& image, const LinePixelOptions& options);
 
 // Coordinates of the mask's set pixels, thinned to at most `max_count` by a
 // regular stride so that they stay spread over the image.

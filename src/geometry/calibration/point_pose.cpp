@@ -40,8 +40,7 @@ double solveFrom(CameraParams& cp, const std::vector<PointCorrespondence>& pts, 
   if (!std::isfinite(summary.final_cost)) return 1e300;
   // Every point must stay in front of the camera.
   for (const auto& c : pts) {
-    double r[2];
-    if (!pointReprojection(cp.intrinsics, cp.rotation, cp.position, c.field, c.image, r)) return 1e300;
+    if (!inFrontOfCamera(cp.rotation, cp.position, c.field)) return 1e300;
   }
   return summary.final_cost;
 }
