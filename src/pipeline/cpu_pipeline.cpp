@@ -67,8 +67,7 @@ struct CpuPipeline::Impl {
   std::vector<uint32_t> packed;  // chroma samples, int16 pairs
   ChromaFixed chroma_fixed{};
   cv::Mat last_raw;  // header of the last frame, for colors and inspection
-  std::vector<int16_t> ca, cb;  // chroma planes, 1/kChromaPlaneScale units
-  std::vector<float> score;
+  std::vector<float> ca, cb, score;
   std::vector<int32_t> gdot;
   std::vector<uint32_t> sat;
   std::vector<uint8_t> peak_mask;  // 1 where the whole window is seen by the camera

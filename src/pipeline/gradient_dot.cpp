@@ -6,7 +6,7 @@
 namespace dv {
 
 __attribute__((target_clones("avx2", "default"))) void gradientDotRows(
-    const int16_t* ca, const int16_t* cb, int width, int height, double scale, int32_t* g, int y_begin,
+    const float* ca, const float* cb, int width, int height, double scale, int32_t* g, int y_begin,
     int y_end) {
   // i(x + s) with s = k + a: linear between samples k and k + 1 away.
   const int k = static_cast<int>(std::floor(scale));
@@ -20,14 +20,12 @@ __attribute__((target_clones("avx2", "default"))) void gradientDotRows(
     }
     for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
     const size_t w = width;
-    const int16_t* a_rows[4] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + (y + k) * w,
+    const float* a_rows[4] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + (y + k) * w,
                               ca + (y + k + 1) * w};
-    const int16_t* b_rows[4] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + (y + k) * w,
+    const float* b_rows[4] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + (y + k) * w,
                               cb + (y + k + 1) * w};
-    const int16_t* a_mid = ca + y * w;
-    const int16_t* b_mid = cb + y * w;
-    // Plane units -> chroma (squared), then the fixed point of G.
-    const float out_scale = kGradientFixedPoint / (kChromaPlaneScale * kChromaPlaneScale);
+    const float* a_mid = ca + y * w;
+    const float* b_mid = cb + y * w;
     for (int x = m; x < width - m; ++x) {
       const float gxa = na * (a_mid[x + k] - a_mid[x - k]) + a * (a_mid[x + k + 1] - a_mid[x - k - 1]);
       const float gya = na * (a_rows[2][x] - a_rows[1][x]) + a * (a_rows[3][x] - a_rows[0][x]);
@@ -35,12 +33,12 @@ __attribute__((target_clones("avx2", "default"))) void gradientDotRows(
       const float gyb = na * (b_rows[2][x] - b_rows[1][x]) + a * (b_rows[3][x] - b_rows[0][x]);
       // Truncation (not lrintf, which the compiler will not vectorise);
       // its bias toward zero is symmetric for both signs.
-      out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * out_scale);
+      out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
     }
   }
 }
 
-float windowGradientEnergy(const int16_t* ca, const int16_t* cb, int width, double scale, int x, int y,
+float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
                            int r) {
   const int k = static_cast<int>(std::floor(scale));
   const float a = static_cast<float>(scale - k), na = 1 - a;
@@ -48,8 +46,8 @@ float windowGradientEnergy(const int16_t* ca, const int16_t* cb, int width, doub
   double sum = 0;
   for (int yy = y - r; yy <= y + r; ++yy) {
     for (int xx = x - r; xx <= x + r; ++xx) {
-      for (const int16_t* c : {ca, cb}) {
-        const int16_t* mid = c + yy * w;
+      for (const float* c : {ca, cb}) {
+        const float* mid = c + yy * w;
         const float gx = na * (mid[xx + k] - mid[xx - k]) + a * (mid[xx + k + 1] - mid[xx - k - 1]);
         const float gy = na * (c[(yy + k) * w + xx] - c[(yy - k) * w + xx]) +
                          a * (c[(yy + k + 1) * w + xx] - c[(yy - k - 1) * w + xx]);
@@ -57,8 +55,7 @@ float windowGradientEnergy(const int16_t* ca, const int16_t* cb, int width, doub
       }
     }
   }
-  return static_cast<float>(sum / ((2 * r + 1) * (2 * r + 1)) /
-                            (kChromaPlaneScale * kChromaPlaneScale));
+  return static_cast<float>(sum / ((2 * r + 1) * (2 * r + 1)));
 }
 
 }  // namespace dv

@@ -20,23 +20,21 @@ struct ChromaTransform {
 // Rectify rows [y_begin, y_end) of the grid: bilinear interpolation of the
 // packed chroma samples (see bayerChromaRows; chroma is linear, so
 // interpolating it equals converting interpolated color), times `gain`.
-// Writes planes ca, cb (grid sized, row-major) as int16 in 1/kChromaPlaneScale
-// units (halves the memory traffic of this and the next stage).
-constexpr float kChromaPlaneScale = 1024.0f;
-void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float gain, int16_t* ca,
-                       int16_t* cb, int y_begin, int y_end);
+// Writes planes ca, cb (grid sized, row-major).
+void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float gain, float* ca,
+                       float* cb, int y_begin, int y_end);
 
 // Color gradient dot product (thesis eq. 5.11, §5.2.7.1) at distance `scale`
 // cells (fractional distances interpolate linearly), summed over both chroma
 // channels, in fixed point (value * 2^14). Cells closer than the gradient
 // reach to the border are 0.
 constexpr float kGradientFixedPoint = 16384.0f;
-void gradientDotRows(const int16_t* ca, const int16_t* cb, int width, int height, double scale,
+void gradientDotRows(const float* ca, const float* cb, int width, int height, double scale,
                      int32_t* g, int y_begin, int y_end);
 
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
 // (x, y), same gradient as gradientDotRows. Used only at peak candidates.
-float windowGradientEnergy(const int16_t* ca, const int16_t* cb, int width, double scale, int x, int y,
+float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
                            int r);
 
 // Summed-area table (thesis A.3) in modular 32-bit arithmetic: a box sum is

@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <cmath>
 
 #include "pipeline/kernels.h"
@@ -20,7 +19,7 @@ ChromaTransform ChromaTransform::of(ColorSpace space) {
 }
 
 __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
-    const RemapTable& table, const uint32_t* src, float gain, int16_t* ca, int16_t* cb, int y_begin,
+    const RemapTable& table, const uint32_t* src, float gain, float* ca, float* cb, int y_begin,
     int y_end) {
   const int w = table.width;
   const int stride = table.src_width;
@@ -29,9 +28,8 @@ __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
     const size_t row = static_cast<size_t>(y) * w;
     const int32_t* idx = table.index.data() + row;
     const uint16_t* fr = table.frac.data() + row;
-    int16_t* oa = ca + row;
-    int16_t* ob = cb + row;
-    const float g = gain * kChromaPlaneScale;
+    float* oa = ca + row;
+    float* ob = cb + row;
     for (int x = 0; x < w; ++x) {
       const int i = idx[x];
       const uint32_t p00 = src[i], p01 = src[i + 1], p10 = src[i + stride],
@@ -41,10 +39,8 @@ __attribute__((target_clones("avx2", "default"))) void rectifyChromaRows(
       // Low half a, high half b, both int16.
       auto lo = [](uint32_t p) { return static_cast<float>(static_cast<int16_t>(p & 0xffffu)); };
       auto hi = [](uint32_t p) { return static_cast<float>(static_cast<int32_t>(p) >> 16); };
-      const float va = (w00 * lo(p00) + w01 * lo(p01) + w10 * lo(p10) + w11 * lo(p11)) * g;
-      const float vb = (w00 * hi(p00) + w01 * hi(p01) + w10 * hi(p10) + w11 * hi(p11)) * g;
-      oa[x] = static_cast<int16_t>(std::clamp(va, -32767.0f, 32767.0f));
-      ob[x] = static_cast<int16_t>(std::clamp(vb, -32767.0f, 32767.0f));
+      oa[x] = (w00 * lo(p00) + w01 * lo(p01) + w10 * lo(p10) + w11 * lo(p11)) * gain;
+      ob[x] = (w00 * hi(p00) + w01 * hi(p01) + w10 * hi(p10) + w11 * hi(p11)) * gain;
     }
   }
 }
