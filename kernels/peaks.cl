@@ -4,7 +4,8 @@
 // one peak) where the peak mask allows; their reported score is the ratio of
 // the raw score to (mean gradient energy in the window + floor), kept above
 // `threshold`; then quadratic peak interpolation on the raw score and the
-// mean bilinear RGB over the disc of `color_radius` cells. Peaks are appended to a
+// mean bilinear RGB over the disc of `color_radius` cells, read from the raw
+// frame (co-sited samples, as sampleRgbAt in pipeline/bayer_subsample.cpp). Peaks are appended to a
 // compact list (after the counters of the results buffer) through an
 // atomic counter; the host orders them by score.
 #pragma OPENCL FP_CONTRACT OFF
@@ -16,8 +17,10 @@ typedef double dv_real;  // the CPU reference does the disc test in double
 typedef float dv_real;
 #endif
 
+// x, y: interpolated position; cell_x, cell_y: the peak cell (the host's
+// duplicate test uses it, as the CPU reference does).
 typedef struct {
-  float x, y, score, r, g, b;
+  float x, y, score, r, g, b, cell_x, cell_y;
 } dv_peak;
 
 inline float dv_peak_offset(float l, float c, float r) {
@@ -29,32 +32,59 @@ inline float dv_peak_offset(float l, float c, float r) {
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 window,
 // the same gradient as gradient_dot (pipeline/gradient_dot.cpp,
 // windowGradientEnergy; summed in double there, and here where available).
-inline float dv_window_energy(__global const float2* chroma, int width, int k, float a, float na,
-                              int x, int y, int r) {
+inline float dv_window_energy(__global const short2* chroma, int width, int k, float a, float na,
+                              int x, int y, int r, float plane_scale) {
   const size_t w = width;
   dv_real sum = 0;
   for (int yy = y - r; yy <= y + r; ++yy) {
-    __global const float2* mid = chroma + yy * w;
+    __global const short2* mid = chroma + yy * w;
     for (int xx = x - r; xx <= x + r; ++xx) {
-      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
-      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
-      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
-      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
-      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
+      const int2 xp = convert_int2(mid[xx + k]), xm = convert_int2(mid[xx - k]);
+      const int2 xp1 = convert_int2(mid[xx + k + 1]), xm1 = convert_int2(mid[xx - k - 1]);
+      const int2 yp = convert_int2(chroma[(yy + k) * w + xx]), ym = convert_int2(chroma[(yy - k) * w + xx]);
+      const int2 yp1 = convert_int2(chroma[(yy + k + 1) * w + xx]);
+      const int2 ym1 = convert_int2(chroma[(yy - k - 1) * w + xx]);
+      const float gxa = na * (float)(xp.x - xm.x) + a * (float)(xp1.x - xm1.x);
+      const float gya = na * (float)(yp.x - ym.x) + a * (float)(yp1.x - ym1.x);
       sum += (dv_real)0.5 * (dv_real)(gxa * gxa + gya * gya);
-      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
-      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
+      const float gxb = na * (float)(xp.y - xm.y) + a * (float)(xp1.y - xm1.y);
+      const float gyb = na * (float)(yp.y - ym.y) + a * (float)(yp1.y - ym1.y);
       sum += (dv_real)0.5 * (dv_real)(gxb * gxb + gyb * gyb);
     }
   }
-  return (float)(sum / ((2 * r + 1) * (2 * r + 1)));
+  return (float)(sum / ((2 * r + 1) * (2 * r + 1)) / (dv_real)(plane_scale * plane_scale));
+}
+
+// Co-sited RGB of sample (i, j), clamped to the image: Bayer (bayer != 0,
+// sites rx, ry, bx, by) or BGR.
+inline float3 dv_sample_rgb(__global const uchar* raw, int stride, int bayer, int4 sites, int ws,
+                            int hs, int i, int j) {
+  i = clamp(i, 0, ws - 1);
+  j = clamp(j, 0, hs - 1);
+  if (!bayer) {
+    __global const uchar* p = raw + (size_t)j * stride + 3 * i;
+    return (float3)(p[2], p[1], p[0]);
+  }
+  const int rx = sites.x, ry = sites.y, bx = sites.z, by = sites.w;
+#define DV_AT(x, y) ((int)raw[(size_t)(y) * stride + (x)])
+  int ni = clamp(i + (rx == 0 ? 1 : -1), 0, ws - 1), nj = clamp(j + (ry == 0 ? 1 : -1), 0, hs - 1);
+  const int r = (9 * DV_AT(2 * i + rx, 2 * j + ry) + 3 * DV_AT(2 * ni + rx, 2 * j + ry) +
+                 3 * DV_AT(2 * i + rx, 2 * nj + ry) + DV_AT(2 * ni + rx, 2 * nj + ry) + 8) >> 4;
+  ni = clamp(i + (bx == 0 ? 1 : -1), 0, ws - 1);
+  nj = clamp(j + (by == 0 ? 1 : -1), 0, hs - 1);
+  const int b = (9 * DV_AT(2 * i + bx, 2 * j + by) + 3 * DV_AT(2 * ni + bx, 2 * j + by) +
+                 3 * DV_AT(2 * i + bx, 2 * nj + by) + DV_AT(2 * ni + bx, 2 * nj + by) + 8) >> 4;
+  const int g = (DV_AT(2 * i + 1 - rx, 2 * j + ry) + DV_AT(2 * i + rx, 2 * j + 1 - ry) + 1) >> 1;
+#undef DV_AT
+  return (float3)(r, g, b);
 }
 
 __kernel void find_peaks(__global const float* score, __global const uchar* mask, int width,
                          int height, int margin, float raw_threshold, float threshold,
-                         __global const float2* chroma, int k, float a, float na, int window,
-                         float energy_floor, __global const uchar4* rgbx,
-                         int src_width, __global const int* remap_index,
+                         __global const short2* chroma, int k, float a, float na, int window,
+                         float energy_floor, float plane_scale, __global const uchar* raw, int raw_stride,
+                         int bayer, int4 sites, int src_width, int src_height,
+                         __global const int* remap_index,
                          __global const ushort* remap_frac, dv_real color_radius,
                          __global uint* results, int capacity) {
   const int x = get_global_id(0), y = get_global_id(1);
@@ -66,7 +96,7 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   if (!(c > raw_threshold)) return;
   const float l = score[cell - 1], rt = score[cell + 1], up = score[cell - width], dn = score[cell + width];
   if (!(c > l && c >= rt && c > up && c >= dn && mask[cell])) return;
-  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window);
+  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window, plane_scale);
   const float ratio = c / (energy + energy_floor);
   if (!(ratio > threshold)) return;
   const uint slot = atomic_inc(&results[DV_RESULT_PEAK_COUNT]);
@@ -86,14 +116,16 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
       const size_t kk = (size_t)yy * width + xx;
       const int i = remap_index[kk];
       const uint fr = remap_frac[kk];
+      const int sx = i % src_width, sy = i / src_width;
       const float fx = (float)(fr & 255u) / 256.0f, fy = (float)(fr >> 8) / 256.0f;
       const float w0 = (1 - fx) * (1 - fy), w1 = fx * (1 - fy), w2 = (1 - fx) * fy, w3 = fx * fy;
-      const float4 p0 = convert_float4(rgbx[i]), p1 = convert_float4(rgbx[i + 1]);
-      const float4 p2 = convert_float4(rgbx[i + src_width]), p3 = convert_float4(rgbx[i + src_width + 1]);
-      float v;
-      v = 0; v += w0 * p0.x; v += w1 * p1.x; v += w2 * p2.x; v += w3 * p3.x; sum_r += v;
-      v = 0; v += w0 * p0.y; v += w1 * p1.y; v += w2 * p2.y; v += w3 * p3.y; sum_g += v;
-      v = 0; v += w0 * p0.z; v += w1 * p1.z; v += w2 * p2.z; v += w3 * p3.z; sum_b += v;
+      const float3 p0 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy);
+      const float3 p1 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy);
+      const float3 p2 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy + 1);
+      const float3 p3 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy + 1);
+      sum_r += w0 * p0.x + w1 * p1.x + w2 * p2.x + w3 * p3.x;
+      sum_g += w0 * p0.y + w1 * p1.y + w2 * p2.y + w3 * p3.y;
+      sum_b += w0 * p0.z + w1 * p1.z + w2 * p2.z + w3 * p3.z;
       ++n;
     }
   }
@@ -101,6 +133,8 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   p.x = gx;
   p.y = gy;
   p.score = ratio;
+  p.cell_x = x;
+  p.cell_y = y;
   p.r = n ? sum_r / n : 0.0f;
   p.g = n ? sum_g / n : 0.0f;
   p.b = n ? sum_b / n : 0.0f;

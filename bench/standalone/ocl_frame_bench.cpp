@@ -95,6 +95,7 @@ void buildTables(dv::OclEngineConfig& c) {
   c.remap_index.assign(cells, 0);
   c.remap_frac.assign(cells, 0);
   c.peak_mask.assign(cells, 0);
+  int x_begin = sw, x_end = 0, y_begin = sh, y_end = 0;
   for (int y = 0; y < c.grid_height; ++y)
     for (int x = 0; x < c.grid_width; ++x) {
       const double gx = x - c.grid_width / 2.0, gy = y - c.grid_height / 2.0;
@@ -108,10 +109,13 @@ void buildTables(dv::OclEngineConfig& c) {
       if (y0 > sh - 2) y0 = sh - 2, fy = 255;
       const size_t k = static_cast<size_t>(y) * c.grid_width + x;
       c.remap_index[k] = y0 * sw + x0;
+      x_begin = std::min(x_begin, x0), x_end = std::max(x_end, x0 + 2);
+      y_begin = std::min(y_begin, y0), y_end = std::max(y_end, y0 + 2);
       c.remap_frac[k] = static_cast<uint16_t>(fx | (fy << 8));
       c.peak_mask[k] = x >= c.margin && y >= c.margin && x < c.grid_width - c.margin &&
                        y < c.grid_height - c.margin;
     }
+  c.region_x_begin = x_begin, c.region_x_end = x_end, c.region_y_begin = y_begin, c.region_y_end = y_end;
 }
 
 struct Stat {
@@ -186,10 +190,14 @@ int main(int argc, char** argv) {
     cfg.image_width = width;
     cfg.image_height = height;
     cfg.bayer = true;
-    const float s2 = 1.5f / std::sqrt(2.0f), s6 = 1.5f / std::sqrt(6.0f);  // dRGB, as the CPU reference
+    // dRGB as the CPU reference (1.5 x an orthonormal basis normal to gray),
+    // coefficients in 1/1024.
+    const float s2 = 1.5f / std::sqrt(2.0f), s6 = 1.5f / std::sqrt(6.0f);
     const float a[3] = {s2, -s2, 0}, b[3] = {s6, s6, -2 * s6};
-    std::copy(a, a + 3, cfg.chroma_a);
-    std::copy(b, b + 3, cfg.chroma_b);
+    for (int i = 0; i < 3; ++i) {
+      cfg.chroma_a[i] = static_cast<int>(std::lround(a[i] * 1024));
+      cfg.chroma_b[i] = static_cast<int>(std::lround(b[i] * 1024));
+    }
     const double scale = 4.9;  // mm per grid cell
     cfg.gradient_scale = std::ceil(25 / scale) / 3.0;
     cfg.quadrant_radius = std::max(2, static_cast<int>(std::lround(25 / scale)));
@@ -263,13 +271,13 @@ int main(int argc, char** argv) {
         for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<const uint8_t*>(p)[i]) * 1099511628211ull;
         return static_cast<unsigned long long>(h);
       };
-      const auto rgbx = engine.readRgbx();
+      const auto packed = engine.readPackedChroma();
       const auto chroma = engine.readChroma();
       const auto g = engine.readGradient();
       const auto sat = engine.readSat();
       const auto sc = engine.readScore();
-      std::printf("luma mean %.6f\nrgbx %016llx\nchroma %016llx\ngradient %016llx\nsat %016llx\nscore %016llx\n",
-                  engine.lastLumaMean(), fnv(rgbx.data(), rgbx.size()), fnv(chroma.data(), chroma.size() * 4),
+      std::printf("luma mean %.6f\npacked %016llx\nchroma %016llx\ngradient %016llx\nsat %016llx\nscore %016llx\n",
+                  engine.lastLumaMean(), fnv(packed.data(), packed.size() * 4), fnv(chroma.data(), chroma.size() * 2),
                   fnv(g.data(), g.size() * 4), fnv(sat.data(), sat.size() * 4), fnv(sc.data(), sc.size() * 4));
       for (size_t i = 0; i < engine.peaks().size() && i < 5; ++i) {
         const auto& p = engine.peaks()[i];
