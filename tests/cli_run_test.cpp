@@ -83,7 +83,8 @@ class CliRun : public ::testing::Test {
 };
 
 TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
-  const CliResult r = cli("run --source '" + scene("frame_0_*.pgm") + "' --geometry " + scene("geometry.json") +
+  // The directory `synth` wrote, as the README shows it.
+  const CliResult r = cli("run --source " + scene_dir_.string() + " --geometry " + scene("geometry.json") +
                           " --camera-id 0 --jsonl " + path("det.jsonl") + " --record " + path("det.log") +
                           " --no-publish");
   ASSERT_EQ(r.code, 0) << r.out << r.err;

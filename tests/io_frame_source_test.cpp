@@ -85,6 +85,28 @@ TEST_F(FrameSourceTest, DirectoryIsSortedByNameWithSequenceTimestamps) {
   EXPECT_EQ(times, (std::vector<double>{0.0, 0.02, 0.04}));
 }
 
+TEST_F(FrameSourceTest, SynthDirectoryYieldsOneCamerasFramesOncePerFrame) {
+  writeColor("frame_0_00000.png", 0);
+  cv::imwrite(path("frame_0_00000.pgm"), cv::Mat(24, 32, CV_8UC1, cv::Scalar(5)));
+  cv::imwrite(path("frame_0_00001.pgm"), cv::Mat(24, 32, CV_8UC1, cv::Scalar(6)));
+  cv::imwrite(path("frame_1_00000.pgm"), cv::Mat(24, 32, CV_8UC1, cv::Scalar(7)));
+  FrameSourceOptions opt;
+  opt.scene_camera = 0;
+  auto src = openFrameSource(dir_.string(), opt);
+  Frame f;
+  std::vector<std::string> names;
+  while (src->next(f)) names.push_back(fs::path(f.name).filename().string());
+  EXPECT_EQ(names, (std::vector<std::string>{"frame_0_00000.pgm", "frame_0_00001.pgm"}));
+  opt.scene_camera = 1;
+  EXPECT_EQ(openFrameSource(dir_.string(), opt)->expectedCount(), 1);
+  opt.scene_camera = 2;
+  EXPECT_THROW(openFrameSource(dir_.string(), opt), InputError);
+  // Without the option every image counts.
+  EXPECT_EQ(openFrameSource(dir_.string(), {})->expectedCount(), 4);
+  // Names of other kinds are not filtered.
+  EXPECT_EQ(selectSceneCamera({"a.png", "b.png"}, 3).size(), 2u);
+}
+
 TEST_F(FrameSourceTest, GlobSelectsMatchingImages) {
   writeColor("cam0_1.png", 1);
   writeColor("cam0_0.png", 0);

@@ -195,7 +195,7 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
     ProcessorOptions o = s.options;
     o.pipeline.bayer = bayerPatternOf(frame.format);
     ch.processor.emplace(c, s.field, o);
-    const size_t expect = static_cast<size_t>(std::max(16L, s.args.max_frames));
+    const size_t expect = static_cast<size_t>(s.args.max_frames > 0 ? s.args.max_frames : 4096);
     ch.pipeline_ms.reserve(expect);
     ch.detection_ms.reserve(expect);
     ch.total_ms.reserve(expect);
@@ -302,6 +302,7 @@ int runOnSource(const RunArgs& a) {
   FrameSourceOptions so;
   so.fps = a.fps;
   so.bayer = bayerFormatFromName(a.bayer, "--bayer");
+  so.scene_camera = calibration->camera_id;
   std::unique_ptr<FrameSource> source = openFrameSource(a.source, so);
 
   Outputs outputs(a, toProto(geometry));
@@ -385,8 +386,9 @@ CommandFn addRunCommand(CLI::App& root) {
       "Detect robots and balls in a camera's frames and publish them as SSL_DetectionFrame. "
       "Without --source it runs on the built-in synthetic scene and compares with its truth.");
   cmd->add_option("--source", a->source,
-                  "image file, directory of images, quoted glob ('dir/frame_0_*.pgm') or video file. "
-                  "Color images are RGB; 8-bit single-channel images are Bayer mosaics");
+                  "image file, directory of images (sorted by name; in a `dotvision synth` directory only "
+                  "the chosen camera's frames), quoted glob ('dir/*.png') or video file. Color images are "
+                  "RGB; 8-bit single-channel images are Bayer mosaics");
   cmd->add_option("--geometry", a->geometry, "SSL_GeometryData as canonical JSON (or YAML)");
   cmd->add_option("--camera-id", a->camera_id, "camera id whose calibration is used");
   cmd->add_option("--scene", a->scene,

@@ -240,6 +240,41 @@ bool VideoSource::next(Frame& f) {
 
 // ---- factory ----
 
+std::vector<std::string> selectSceneCamera(const std::vector<std::string>& sorted_paths, long camera) {
+  if (camera < 0) return sorted_paths;
+  // frame_<cam>_<n>: parsed by hand to keep <regex> out of this file.
+  auto parse = [](const std::string& path, long& cam, long& n) {
+    const std::string stem = fs::path(path).stem().string();
+    if (stem.rfind("frame_", 0) != 0) return false;
+    const size_t sep = stem.find('_', 6);
+    if (sep == std::string::npos || sep == 6 || sep + 1 >= stem.size()) return false;
+    const std::string a = stem.substr(6, sep - 6), b = stem.substr(sep + 1);
+    auto digits = [](const std::string& t) {
+      return !t.empty() && std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isdigit(c); });
+    };
+    if (!digits(a) || !digits(b)) return false;
+    cam = std::stol(a);
+    n = std::stol(b);
+    return true;
+  };
+  std::vector<std::string> out;
+  long last_n = -1;
+  bool any_scene_name = false;
+  for (const std::string& p : sorted_paths) {
+    long cam = 0, n = 0;
+    if (!parse(p, cam, n)) continue;
+    any_scene_name = true;
+    if (cam != camera) continue;
+    if (n == last_n) {  // same frame as .pgm and .png: keep the raw mosaic
+      if (lowerExtension(p) == ".pgm") out.back() = p;
+      continue;
+    }
+    out.push_back(p);
+    last_n = n;
+  }
+  return any_scene_name ? out : sorted_paths;
+}
+
 std::unique_ptr<FrameSource> openFrameSource(const std::string& spec,
                                              const FrameSourceOptions& options) {
   if (!(options.fps > 0)) throw InputError("command line", "--fps must be positive");
@@ -254,6 +289,9 @@ std::unique_ptr<FrameSource> openFrameSource(const std::string& spec,
   if (fs::is_directory(spec, ec)) {
     auto paths = imagesInDirectory(spec);
     if (paths.empty()) throw InputError(spec, "the directory holds no image files");
+    paths = selectSceneCamera(paths, options.scene_camera);
+    if (paths.empty())
+      throw InputError(spec, "the directory holds no frames of camera " + std::to_string(options.scene_camera));
     return std::make_unique<ImageSequenceSource>(std::move(paths), options, "images in " + spec);
   }
   if (isImageFileName(spec)) {

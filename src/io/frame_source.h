@@ -64,6 +64,10 @@ class FrameSource {
 struct FrameSourceOptions {
   double fps = 60;  // sequence timestamps: index / fps
   PixelFormat bayer = PixelFormat::BayerRggb8;  // meaning of single-channel images
+  // For a directory written by `dotvision synth` (frame_<cam>_<NNNNN>.pgm/.png):
+  // take only this camera's frames, one file per frame (the raw .pgm where
+  // both exist). -1 or a directory without such names: every image.
+  long scene_camera = -1;
 };
 
 // A fixed list of image files, read in the given order. Color images
@@ -111,6 +115,9 @@ class VideoSource : public FrameSource {
 bool isImageFileName(const std::string& path);
 // True for common video containers (.mp4 .avi .mkv .mov .webm .m4v .mpg .mpeg).
 bool isVideoFileName(const std::string& path);
+
+// Applies FrameSourceOptions::scene_camera to a sorted list of image paths.
+std::vector<std::string> selectSceneCamera(const std::vector<std::string>& sorted_paths, long camera);
 
 // Opens `spec`: an image file, a directory (its image files, sorted by name),
 // a glob pattern with * ? or [..] (matching image files, sorted by name), or a
