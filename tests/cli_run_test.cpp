@@ -9,14 +9,17 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <sstream>
 
+#include "core/error.h"
 #include "dotvision/ssl_wrapper.pb.h"
 #include "eval/detection_files.h"
 #include "geometry/proto_json.h"
+#include "net/multicast.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
@@ -113,6 +116,38 @@ TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
   EXPECT_EQ(j["overall"]["frames_missing"].get<long>(), 0);
   EXPECT_GT(j["overall"]["robots"]["truth"].get<long>(), 0);
   EXPECT_TRUE(j["per_camera"].contains("0"));
+}
+
+TEST_F(CliRun, PublishesGeometryAndDetectionsOnTheMulticastGroup) {
+  const uint16_t port = static_cast<uint16_t>(20000 + (::getpid() % 20000));
+  std::optional<MulticastReceiver> rx;
+  try {
+    rx.emplace("224.5.23.2", port, "127.0.0.1");
+    MulticastSender probe("224.5.23.2", port, "127.0.0.1");
+    probe.send(std::string("probe"));
+    if (rx->receive(0.5) != std::optional<std::string>("probe"))
+      GTEST_SKIP() << "loopback multicast does not deliver here";
+  } catch (const InputError& e) {
+    GTEST_SKIP() << "no loopback multicast: " << e.what();
+  }
+  const CliResult r = cli("run --source " + scene("frame_0_00000.pgm") + " --geometry " + scene("geometry.json") +
+                          " --camera-id 0 --multicast-interface 127.0.0.1 --multicast-port " + std::to_string(port));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("published 2 packets"), std::string::npos) << r.out;
+  int geometry = 0, detection = 0;
+  while (auto datagram = rx->receive(0.5)) {
+    ssl::SSL_WrapperPacket p;
+    ASSERT_TRUE(p.ParseFromString(*datagram));
+    EXPECT_NE(p.has_geometry(), p.has_detection());  // separate datagrams, as ssl-vision sends them
+    if (p.has_geometry()) ++geometry;
+    if (p.has_detection()) {
+      ++detection;
+      EXPECT_EQ(p.detection().frame_number(), 0u);
+      EXPECT_EQ(p.detection().camera_id(), 0u);
+    }
+  }
+  EXPECT_EQ(geometry, 1);
+  EXPECT_EQ(detection, 1);
 }
 
 TEST_F(CliRun, BadFramesAreSkippedNamedAndSummarised) {

@@ -24,7 +24,7 @@
 #include "io/detection_frame.h"
 #include "io/frame_source.h"
 #include "io/ssl_log.h"
-#include "net/multicast.h"
+#include "net/vision_publisher.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
@@ -33,10 +33,6 @@ namespace dv::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double wallSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 struct RunArgs {
   std::string source;
@@ -61,40 +57,53 @@ struct RunArgs {
   bool quiet = false;
 };
 
-// Where detections go: multicast, SSL log, JSONL. Geometry goes to the first
-// two as well (SSL-Vision sends it every 3 s), so a log is self-contained.
+// Where detections go: multicast (through the league-style publisher, which
+// also repeats the geometry every 3 s), SSL log, JSONL. The log starts with
+// a geometry packet too, so it is self-contained.
 class Outputs {
  public:
   Outputs(const RunArgs& a, const ssl::SSL_GeometryData& geometry) {
-    geometry_packet_.set_source(ssl::SSL_SOURCE_OTHER);
-    *geometry_packet_.mutable_geometry() = geometry;
     if (!a.no_publish) {
+      VisionPublisherOptions po;
+      po.group = a.multicast_group;
+      po.port = a.multicast_port;
+      po.interface_addr = a.multicast_interface;
       try {
-        sender_ = std::make_unique<MulticastSender>(a.multicast_group, a.multicast_port,
-                                                    a.multicast_interface);
+        publisher_ = std::make_unique<VisionPublisher>(po);
       } catch (const InputError& e) {
         // Without an explicit interface a missing multicast route must not
         // stop local work (recording, evaluation); with one it is an error.
         if (!a.multicast_interface.empty()) throw;
         std::fprintf(stderr, "dotvision run: warning: not publishing: %s\n", e.what());
       }
+      if (publisher_) {
+        publisher_->setGeometry(geometry);
+        publisher_->publishGeometry(monotonicSeconds());
+      }
     }
-    if (!a.record.empty()) log_ = std::make_unique<SslLogWriter>(a.record);
+    if (!a.record.empty()) {
+      log_ = std::make_unique<SslLogWriter>(a.record);
+      ssl::SSL_WrapperPacket g;
+      g.set_source(ssl::SSL_SOURCE_SSL_VISION);
+      *g.mutable_geometry() = geometry;
+      log_->write(nowNs(), LogMessageType::Vision2014, g.SerializeAsString());
+    }
     if (!a.jsonl.empty()) {
       jsonl_.open(a.jsonl, std::ios::trunc);
       if (!jsonl_) throw InputError(a.jsonl, "cannot open for writing");
       jsonl_path_ = a.jsonl;
     }
-    sendGeometry();
   }
 
   void detection(const ssl::SSL_WrapperPacket& packet) {
-    if (sender_ || log_) packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
-    if (sender_) {
-      if (!sender_->send(buffer_)) ++send_failures_;
-      if (wallSeconds() - last_geometry_ >= 3.0) sendGeometry();
+    if (publisher_) {
+      if (!publisher_->publishDetection(packet.detection())) ++send_failures_;
+      publisher_->publishGeometryIfDue(monotonicSeconds());
     }
-    if (log_) log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
+    if (log_) {
+      packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
+      log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
+    }
     if (jsonl_.is_open()) {
       jsonl_ << toCanonicalJson(packet) << '\n';
       if (!jsonl_) throw InputError(jsonl_path_, "write failed");
@@ -111,13 +120,14 @@ class Outputs {
 
   std::string describe(const RunArgs& a) const {
     std::string out;
-    if (sender_)
-      out += "published " + std::to_string(sender_->sentCount()) + " packets to " + sender_->name() +
-             (send_failures_ ? " (" + std::to_string(send_failures_) + " failed)" : "");
+    if (publisher_)
+      out += "published " + std::to_string(publisher_->sender().sentCount()) + " packets to " +
+             publisher_->sender().name() +
+             (send_failures_ ? " (" + std::to_string(send_failures_) + " detection frames failed)" : "");
     else
       out += "not published";
     if (log_) out += "; recorded " + a.record;
-    if (jsonl_path_.size()) out += "; JSONL " + a.jsonl;
+    if (!jsonl_path_.empty()) out += "; JSONL " + a.jsonl;
     return out;
   }
 
@@ -127,20 +137,15 @@ class Outputs {
                std::chrono::system_clock::now().time_since_epoch())
         .count();
   }
-  void sendGeometry() {
-    last_geometry_ = wallSeconds();
-    geometry_packet_.SerializeToString(&buffer_);
-    if (sender_ && !sender_->send(buffer_)) ++send_failures_;
-    if (log_) log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
+  static double monotonicSeconds() {
+    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
   }
 
-  std::unique_ptr<MulticastSender> sender_;
+  std::unique_ptr<VisionPublisher> publisher_;
   std::unique_ptr<SslLogWriter> log_;
   std::ofstream jsonl_;
   std::string jsonl_path_;
-  ssl::SSL_WrapperPacket geometry_packet_;
   std::string buffer_;
-  double last_geometry_ = 0;
   uint64_t send_failures_ = 0;
 };
 

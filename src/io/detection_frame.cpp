@@ -39,9 +39,9 @@ void fillDetectionFrame(const Detections& detections, const FrameStamp& stamp,
 }
 
 void fillDetectionPacket(const Detections& detections, const FrameStamp& stamp,
-                         ssl::SSL_WrapperPacket& out) {
+                         ssl::SSL_WrapperPacket& out, ssl::SSL_Source source) {
   out.clear_geometry();
-  out.set_source(ssl::SSL_SOURCE_OTHER);
+  out.set_source(source);
   fillDetectionFrame(detections, stamp, *out.mutable_detection());
 }
 

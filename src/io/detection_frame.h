@@ -22,8 +22,10 @@ struct FrameStamp {
 void fillDetectionFrame(const Detections& detections, const FrameStamp& stamp,
                         ssl::SSL_DetectionFrame& out);
 
-// The same into a wrapper packet with source SSL_SOURCE_OTHER and no geometry.
+// The same into a wrapper packet without geometry. dotvision stands in for
+// SSL-Vision on the league's port, so that is the default source.
 void fillDetectionPacket(const Detections& detections, const FrameStamp& stamp,
-                         ssl::SSL_WrapperPacket& out);
+                         ssl::SSL_WrapperPacket& out,
+                         ssl::SSL_Source source = ssl::SSL_SOURCE_SSL_VISION);
 
 }  // namespace dv
