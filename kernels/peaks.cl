@@ -32,27 +32,25 @@ inline float dv_peak_offset(float l, float c, float r) {
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 window,
 // the same gradient as gradient_dot (pipeline/gradient_dot.cpp,
 // windowGradientEnergy; summed in double there, and here where available).
-inline float dv_window_energy(__global const short2* chroma, int width, int k, float a, float na,
-                              int x, int y, int r, float plane_scale) {
+inline float dv_window_energy(__global const float2* chroma, int width, int k, float a, float na,
+                              int x, int y, int r) {
   const size_t w = width;
   dv_real sum = 0;
   for (int yy = y - r; yy <= y + r; ++yy) {
-    __global const short2* mid = chroma + yy * w;
+    __global const float2* mid = chroma + yy * w;
     for (int xx = x - r; xx <= x + r; ++xx) {
-      const int2 xp = convert_int2(mid[xx + k]), xm = convert_int2(mid[xx - k]);
-      const int2 xp1 = convert_int2(mid[xx + k + 1]), xm1 = convert_int2(mid[xx - k - 1]);
-      const int2 yp = convert_int2(chroma[(yy + k) * w + xx]), ym = convert_int2(chroma[(yy - k) * w + xx]);
-      const int2 yp1 = convert_int2(chroma[(yy + k + 1) * w + xx]);
-      const int2 ym1 = convert_int2(chroma[(yy - k - 1) * w + xx]);
-      const float gxa = na * (float)(xp.x - xm.x) + a * (float)(xp1.x - xm1.x);
-      const float gya = na * (float)(yp.x - ym.x) + a * (float)(yp1.x - ym1.x);
+      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
+      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
+      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
+      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
+      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
       sum += (dv_real)0.5 * (dv_real)(gxa * gxa + gya * gya);
-      const float gxb = na * (float)(xp.y - xm.y) + a * (float)(xp1.y - xm1.y);
-      const float gyb = na * (float)(yp.y - ym.y) + a * (float)(yp1.y - ym1.y);
+      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
+      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
       sum += (dv_real)0.5 * (dv_real)(gxb * gxb + gyb * gyb);
     }
   }
-  return (float)(sum / ((2 * r + 1) * (2 * r + 1)) / (dv_real)(plane_scale * plane_scale));
+  return (float)(sum / ((2 * r + 1) * (2 * r + 1)));
 }
 
 // Co-sited RGB of sample (i, j), clamped to the image: Bayer (bayer != 0,
@@ -81,8 +79,8 @@ inline float3 dv_sample_rgb(__global const uchar* raw, int stride, int bayer, in
 
 __kernel void find_peaks(__global const float* score, __global const uchar* mask, int width,
                          int height, int margin, float raw_threshold, float threshold,
-                         __global const short2* chroma, int k, float a, float na, int window,
-                         float energy_floor, float plane_scale, __global const uchar* raw, int raw_stride,
+                         __global const float2* chroma, int k, float a, float na, int window,
+                         float energy_floor, __global const uchar* raw, int raw_stride,
                          int bayer, int4 sites, int src_width, int src_height,
                          __global const int* remap_index,
                          __global const ushort* remap_frac, dv_real color_radius,
@@ -96,7 +94,7 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   if (!(c > raw_threshold)) return;
   const float l = score[cell - 1], rt = score[cell + 1], up = score[cell - width], dn = score[cell + width];
   if (!(c > l && c >= rt && c > up && c >= dn && mask[cell])) return;
-  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window, plane_scale);
+  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window);
   const float ratio = c / (energy + energy_floor);
   if (!(ratio > threshold)) return;
   const uint slot = atomic_inc(&results[DV_RESULT_PEAK_COUNT]);

@@ -277,7 +277,7 @@ int main(int argc, char** argv) {
       const auto sat = engine.readSat();
       const auto sc = engine.readScore();
       std::printf("luma mean %.6f\npacked %016llx\nchroma %016llx\ngradient %016llx\nsat %016llx\nscore %016llx\n",
-                  engine.lastLumaMean(), fnv(packed.data(), packed.size() * 4), fnv(chroma.data(), chroma.size() * 2),
+                  engine.lastLumaMean(), fnv(packed.data(), packed.size() * 4), fnv(chroma.data(), chroma.size() * 4),
                   fnv(g.data(), g.size() * 4), fnv(sat.data(), sat.size() * 4), fnv(sc.data(), sc.size() * 4));
       for (size_t i = 0; i < engine.peaks().size() && i < 5; ++i) {
         const auto& p = engine.peaks()[i];

@@ -16,7 +16,6 @@ constexpr int kHeaderWords = 4;                  // DV_RESULT_HEADER in common.c
 constexpr int kPeakWords = 8;                    // floats per OclPeak
 constexpr int kFirstPeaksRead = 256;             // peaks read with the counters
 constexpr float kPackedChromaScale = 64.0f;      // as pipeline/bayer_subsample.h
-constexpr float kChromaPlaneScale = 1024.0f;     // as pipeline/kernels.h
 
 static_assert(sizeof(OclPeak) == kPeakWords * sizeof(float), "OclPeak must match dv_peak");
 
@@ -133,7 +132,7 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   b_->remap_index = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 4, c.remap_index.data(), "remap");
   b_->remap_frac = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells * 2, c.remap_frac.data(), "remap");
   b_->mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells, c.peak_mask.data(), "peak mask");
-  b_->chroma = make(CL_MEM_READ_WRITE, cells * 4, nullptr, "chroma");  // int16 pairs
+  b_->chroma = make(CL_MEM_READ_WRITE, cells * 8, nullptr, "chroma");  // float pairs
   b_->gdot = make(CL_MEM_READ_WRITE, cells * 4, nullptr, "gradient");
   const size_t sat_words = static_cast<size_t>(c.grid_width + 1) * (c.grid_height + 1);
   {
@@ -239,9 +238,8 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argInt(b_->rectify, 5, c.grid_height);
   argFloat(b_->rectify, 6, luma_count_);
   argFloat(b_->rectify, 7, kPackedChromaScale);
-  argFloat(b_->rectify, 8, kChromaPlaneScale);
-  argMem(b_->rectify, 9, b_->results);
-  argMem(b_->rectify, 10, b_->chroma);
+  argMem(b_->rectify, 8, b_->results);
+  argMem(b_->rectify, 9, b_->chroma);
 
   b_->gradient = ctx_->createKernel("gradient_dot");
   const int k = static_cast<int>(std::floor(c.gradient_scale));
@@ -252,8 +250,7 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argInt(b_->gradient, 3, k);
   argFloat(b_->gradient, 4, a);
   argFloat(b_->gradient, 5, na);
-  argFloat(b_->gradient, 6, kGradientFixedPoint / (kChromaPlaneScale * kChromaPlaneScale));
-  argMem(b_->gradient, 7, b_->gdot);
+  argMem(b_->gradient, 6, b_->gdot);
 
   b_->sat_rows = ctx_->createKernel("sat_rows");
   b_->sat_rows_local = floorPow2(std::min<size_t>(256, kernelMax(b_->sat_rows)));
@@ -309,24 +306,23 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argFloat(b_->peaks, 10, na);
   argInt(b_->peaks, 11, c.energy_window);
   argFloat(b_->peaks, 12, c.energy_floor);
-  argFloat(b_->peaks, 13, kChromaPlaneScale);
-  argMem(b_->peaks, 14, input);
-  argInt(b_->peaks, 15, frame_stride_);
-  argInt(b_->peaks, 16, c.bayer ? 1 : 0);
+  argMem(b_->peaks, 13, input);
+  argInt(b_->peaks, 14, frame_stride_);
+  argInt(b_->peaks, 15, c.bayer ? 1 : 0);
   const cl_int4 sites = {{c.red_x, c.red_y, c.blue_x, c.blue_y}};
-  arg(b_->peaks, 17, sizeof sites, &sites);
-  argInt(b_->peaks, 18, ws);
-  argInt(b_->peaks, 19, hs);
-  argMem(b_->peaks, 20, b_->remap_index);
-  argMem(b_->peaks, 21, b_->remap_frac);
+  arg(b_->peaks, 16, sizeof sites, &sites);
+  argInt(b_->peaks, 17, ws);
+  argInt(b_->peaks, 18, hs);
+  argMem(b_->peaks, 19, b_->remap_index);
+  argMem(b_->peaks, 20, b_->remap_frac);
   if (fp64_) {
     const double r = c.color_radius;
-    arg(b_->peaks, 22, sizeof r, &r);
+    arg(b_->peaks, 21, sizeof r, &r);
   } else {
-    argFloat(b_->peaks, 22, static_cast<float>(c.color_radius));
+    argFloat(b_->peaks, 21, static_cast<float>(c.color_radius));
   }
-  argMem(b_->peaks, 23, b_->results);
-  argInt(b_->peaks, 24, capacity_);
+  argMem(b_->peaks, 22, b_->results);
+  argInt(b_->peaks, 23, capacity_);
 
   size_t pixel_max = std::min(kernelMax(b_->rectify), kernelMax(b_->gradient));
   pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), size_t{256}});
@@ -496,8 +492,8 @@ std::vector<T> readAll(cl_command_queue q, cl_mem m, size_t count) {
 std::vector<uint32_t> OclEngine::readPackedChroma() const {
   return readAll<uint32_t>(ctx_->queue(), b_->packed, 1ull * src_width_ * src_height_);
 }
-std::vector<int16_t> OclEngine::readChroma() const {
-  return readAll<int16_t>(ctx_->queue(), b_->chroma, 2ull * cfg_.grid_width * cfg_.grid_height);
+std::vector<float> OclEngine::readChroma() const {
+  return readAll<float>(ctx_->queue(), b_->chroma, 2ull * cfg_.grid_width * cfg_.grid_height);
 }
 std::vector<int32_t> OclEngine::readGradient() const {
   return readAll<int32_t>(ctx_->queue(), b_->gdot, 1ull * cfg_.grid_width * cfg_.grid_height);

@@ -100,7 +100,7 @@ class OclEngine {
 
   // Stage outputs of the last frame, read back for tests (not for hot paths).
   std::vector<uint32_t> readPackedChroma() const;  // int16 pairs per subsampled sample
-  std::vector<int16_t> readChroma() const;    // 2 int16 per cell, 1/1024 units
+  std::vector<float> readChroma() const;      // 2 floats per cell
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
   std::vector<float> readScore() const;
