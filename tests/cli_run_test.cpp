@@ -116,6 +116,15 @@ TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
   EXPECT_EQ(j["overall"]["frames_missing"].get<long>(), 0);
   EXPECT_GT(j["overall"]["robots"]["truth"].get<long>(), 0);
   EXPECT_TRUE(j["per_camera"].contains("0"));
+
+  // Several detection files are merged; the same frames twice are duplicates.
+  const CliResult both = cli("eval --truth " + scene("truth.jsonl") + " --detections " + path("det.log") + " " +
+                             path("det.jsonl") + " --json");
+  ASSERT_EQ(both.code, 0) << both.err;
+  const auto jb = nlohmann::json::parse(both.out);
+  EXPECT_EQ(jb["detection_frames"].get<long>(), 6);
+  EXPECT_EQ(jb["duplicate_detection_frames"].get<long>(), 3);
+  EXPECT_EQ(jb["overall"]["robots"]["matched"], j["overall"]["robots"]["matched"]);
 }
 
 TEST_F(CliRun, PublishesGeometryAndDetectionsOnTheMulticastGroup) {

@@ -2,7 +2,9 @@
 // per camera and overall; `--json` prints one JSON object for machines.
 #include <cstdio>
 #include <memory>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -15,7 +17,7 @@ namespace {
 
 struct EvalArgs {
   std::string truth;
-  std::string detections;
+  std::vector<std::string> detections;
   bool json = false;
   MatchOptions match;
 };
@@ -33,8 +35,8 @@ CommandFn addEvalCommand(CLI::App& root) {
                   "truth JSONL: one canonical-JSON SSL_DetectionFrame per line")
       ->required();
   cmd->add_option("--detections", args->detections,
-                  "detections: JSONL of SSL_WrapperPacket (as `run --jsonl` writes) or an SSL log "
-                  "file (as `run --record` writes)")
+                  "detections: JSONL of SSL_WrapperPacket (as `run --jsonl` writes) or SSL log files "
+                  "(as `run --record` writes); several files (e.g. one per camera) are merged")
       ->required();
   cmd->add_flag("--json", args->json, "print the report as one JSON object");
   cmd->add_option("--robot-radius", args->match.robot_radius_mm,
@@ -46,7 +48,13 @@ CommandFn addEvalCommand(CLI::App& root) {
 
   return [args] {
     const DetectionFile truth = readTruthJsonl(args->truth);
-    const DetectionFile detections = readDetectionFile(args->detections);
+    DetectionFile detections;
+    for (const std::string& path : args->detections) {
+      DetectionFile one = readDetectionFile(path);
+      detections.frames.insert(detections.frames.end(), std::make_move_iterator(one.frames.begin()),
+                               std::make_move_iterator(one.frames.end()));
+      detections.warnings.insert(detections.warnings.end(), one.warnings.begin(), one.warnings.end());
+    }
     for (const std::string& w : truth.warnings) std::fprintf(stderr, "dotvision eval: warning: %s\n", w.c_str());
     for (const std::string& w : detections.warnings)
       std::fprintf(stderr, "dotvision eval: warning: %s\n", w.c_str());
