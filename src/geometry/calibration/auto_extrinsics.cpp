@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
 
 #include "geometry/calibration/line_fit.h"
 #include "geometry/calibration/point_pose.h"
@@ -235,10 +234,9 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
   fine.gates_px = {4, 3};
   fine.max_pixels = 20000;
   const auto best = refineOnLines(candidates[0].params, obs.pixels, model, {}, fine);
-  if (std::getenv("DV_CALIB_DEBUG"))
-    for (const auto& c : candidates)
-      std::fprintf(stderr, "candidate cost %.4f pos %.0f %.0f %.0f f %.1f\n", c.cost, c.params.position[0],
-                   c.params.position[1], c.params.position[2], c.params.intrinsics[0]);
+  for (const auto& c : candidates)
+    spdlog::debug("calibration candidate: cost {:.4f}, camera at ({:.0f}, {:.0f}, {:.0f}), f {:.1f}", c.cost,
+                  c.params.position[0], c.params.position[1], c.params.position[2], c.params.intrinsics[0]);
   for (size_t i = 1; i < candidates.size(); ++i) {
     const auto& c = candidates[i];
     const double moved = std::hypot(c.params.position[0] - best.params.position[0],

@@ -115,6 +115,7 @@ std::optional<IntrinsicsResult> calibrateDistortion(const std::vector<LineGroup>
   IntrinsicsResult result;
   result.rms_before_px = rms();
   ceres::Solver::Options so;
+  so.logging_type = ceres::SILENT;
   so.linear_solver_type = ceres::DENSE_SCHUR;
   so.max_num_iterations = 100;
   so.num_threads = 1;

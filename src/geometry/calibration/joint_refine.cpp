@@ -117,6 +117,7 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
     if (seen_by[e] < 2) problem.SetParameterBlockConstant(&offsets[e]);
   }
   ceres::Solver::Options so;
+  so.logging_type = ceres::SILENT;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = 50;
   ceres::Solver::Summary summary;

@@ -129,6 +129,7 @@ LineFitResult refineOnLines(const CameraParams& start, const std::vector<ImagePx
       if (!fixed_intr.empty()) problem.SetManifold(cp.intrinsics, new ceres::SubsetManifold(4, fixed_intr));
       if (o.fix_height) problem.SetManifold(cp.position, new ceres::SubsetManifold(3, {2}));
       ceres::Solver::Options so;
+      so.logging_type = ceres::SILENT;
       so.linear_solver_type = ceres::DENSE_QR;
       so.max_num_iterations = 30;
       so.num_threads = 1;

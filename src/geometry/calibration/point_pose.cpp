@@ -30,6 +30,7 @@ double solveFrom(CameraParams& cp, const std::vector<PointCorrespondence>& pts, 
   if (fix_height) problem.SetManifold(cp.position, new ceres::SubsetManifold(3, {2}));
   problem.SetParameterLowerBound(cp.intrinsics, 0, 10.0);
   ceres::Solver::Options so;
+  so.logging_type = ceres::SILENT;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = 200;
   so.function_tolerance = 1e-14;
