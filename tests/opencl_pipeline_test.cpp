@@ -1,0 +1,415 @@
+// Differential tests of the OpenCL backend against the CPU reference, on
+// whatever OpenCL device is installed (PoCL in CI): every stage on its own,
+// whole frames (painted and rendered scenes, every input format and score
+// kind), detections, bad frames, device selection and failures.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+#include "detection/detector.h"
+#include "pipeline/backend.h"
+#include "pipeline/bayer_subsample.h"
+#include "pipeline/cpu_pipeline.h"
+#include "pipeline/kernels.h"
+#include "pipeline/opencl/ocl_runtime.h"
+#include "pipeline/opencl/opencl_pipeline.h"
+#include "pipeline/remap_table.h"
+#include "pipeline/thread_pool.h"
+#include "pipeline_test_scene.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+
+namespace dv {
+namespace {
+
+using test::addRobot;
+using test::PaintedScene;
+using test::topDownCamera;
+
+// The first OpenCL device, looked up once for the whole binary.
+const OclDeviceInfo* testDevice(std::string* why = nullptr) {
+  static std::string reason;
+  static const auto devices = listOpenClDevices(&reason);
+  if (why) *why = reason;
+  return devices.empty() ? nullptr : &devices.front();
+}
+
+#define DV_REQUIRE_OPENCL()                                                    \
+  do {                                                                         \
+    std::string why_;                                                          \
+    if (!testDevice(&why_)) GTEST_SKIP() << "no OpenCL device here: " << why_; \
+  } while (0)
+
+PaintedScene robotScene() {
+  PaintedScene s;
+  const test::Color sides[4] = {test::kPink, test::kGreen, test::kGreen, test::kPink};
+  addRobot(s, {820.3, 610.7}, 0.4, test::kYellow, sides);
+  addRobot(s, {1170.9, 380.2}, -2.1, test::kBlue, sides);
+  s.discs.push_back({{1150.4, 700.6}, 21.5, test::kOrange});
+  // A field line crossing, which must not become a blob on either backend.
+  s.bands.push_back({{600, 300}, {1400, 300}, 10});
+  s.bands.push_back({{1000, 100}, {1000, 900}, 10});
+  return s;
+}
+
+// ~4 mm per grid cell: a 640x480 Bayer camera 2 m above the plane (or
+// 320x240 BGR from 4 m, so that cells have the same size).
+CameraModel smallCamera(BayerPattern bayer) {
+  return bayer == BayerPattern::None ? topDownCamera(1000, 500, 150 + 4000, 1000, 320, 240)
+                                     : topDownCamera(1000, 500, 150 + 2000, 1000, 640, 480);
+}
+
+// Blob lists agree: same count, and each OpenCL blob has a CPU blob within
+// 0.05 grid cells whose score agrees within 1e-3 relative and color within
+// half a level.
+void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string& what) {
+  ASSERT_EQ(cpu.blobs.size(), ocl.blobs.size()) << what;
+  for (const auto& b : ocl.blobs) {
+    const Blob* best = nullptr;
+    double best_d = 1e9;
+    for (const auto& c : cpu.blobs) {
+      const double d = std::hypot(c.grid.x - b.grid.x, c.grid.y - b.grid.y);
+      if (d < best_d) best_d = d, best = &c;
+    }
+    ASSERT_NE(best, nullptr);
+    EXPECT_LE(best_d, 0.05) << what << ": blob at " << b.grid.x << "," << b.grid.y;
+    EXPECT_LE(std::abs(best->score - b.score), 1e-3 * std::abs(best->score)) << what;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(best->rgb[c], b.rgb[c], 0.5) << what;
+  }
+}
+
+TEST(OpenClRuntime, ListsDevicesAndNamesThemWhenNothingMatches) {
+  DV_REQUIRE_OPENCL();
+  const auto devices = listOpenClDevices();
+  const std::string list = describeOpenClDevices(devices);
+  EXPECT_NE(list.find("platform 0"), std::string::npos) << list;
+  EXPECT_NE(list.find(devices.front().device_name), std::string::npos) << list;
+  try {
+    selectOpenClDevice({"", "no-such-device-anywhere", false});
+    FAIL() << "a device that does not exist was selected";
+  } catch (const OclError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no-such-device-anywhere"), std::string::npos) << what;
+    EXPECT_NE(what.find(devices.front().device_name), std::string::npos) << what;
+  }
+  // Selection by index and by name finds the same device.
+  const auto by_index = selectOpenClDevice({"0", "0", false});
+  const auto by_name = selectOpenClDevice({"", devices.front().device_name.substr(0, 6), false});
+  EXPECT_EQ(by_index.device_name, devices.front().device_name);
+  EXPECT_EQ(by_name.device_name, devices.front().device_name);
+}
+
+TEST(OpenClRuntime, KernelBuildFailureIsReportedWithTheBuildLog) {
+  DV_REQUIRE_OPENCL();
+  try {
+    OclContext ctx(*testDevice(), "-DDV_TEST_BUILD_FAILURE");
+    FAIL() << "the program built although a test asked for a failure";
+  } catch (const OclError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("build failed"), std::string::npos) << what;
+    EXPECT_NE(what.find("DV_TEST_BUILD_FAILURE"), std::string::npos) << what;
+  }
+}
+
+TEST(OpenClRuntime, ProgramBinaryIsCachedOnDisk) {
+  DV_REQUIRE_OPENCL();
+  const std::string dir = std::string(DV_BINARY_DIR) + "/opencl_cache_test";
+  std::filesystem::remove_all(dir);
+  const char* old = std::getenv("DV_OPENCL_CACHE");
+  const std::string saved = old ? old : "";
+  setenv("DV_OPENCL_CACHE", dir.c_str(), 1);
+  {
+    OclContext first(*testDevice());
+    EXPECT_FALSE(first.programFromCache());
+    OclContext second(*testDevice());
+    EXPECT_TRUE(second.programFromCache());
+  }
+  EXPECT_FALSE(std::filesystem::is_empty(dir));
+  if (old) setenv("DV_OPENCL_CACHE", saved.c_str(), 1);
+  else unsetenv("DV_OPENCL_CACHE");
+}
+
+// Each stage of the OpenCL engine against the CPU reference's function for
+// that stage, fed with the OpenCL engine's own input of that stage, so a
+// difference points at one kernel.
+TEST(OpenClStages, EveryStageMatchesTheCpuFunction) {
+  DV_REQUIRE_OPENCL();
+  const auto cam = smallCamera(BayerPattern::RGGB);
+  const auto field = FieldModel::divisionB();
+  PaintedScene scene = robotScene();
+  scene.noise_sigma = 2;
+  const cv::Mat raw = scene.render(cam, BayerPattern::RGGB);
+  PipelineOptions opt;
+  CpuPipeline cpu(cam, field, opt);
+  OpenClPipeline ocl(cam, field, opt, *testDevice());
+  BlobList cpu_blobs, ocl_blobs;
+  ASSERT_TRUE(cpu.process(raw, cpu_blobs)) << cpu.lastError();
+  ASSERT_TRUE(ocl.process(raw, ocl_blobs)) << ocl.lastError();
+  const auto& e = ocl.engine();
+  const auto& cfg = e.config();
+  const int w = cfg.grid_width, h = cfg.grid_height;
+  ASSERT_EQ(w, cpu.grid().width);
+  ASSERT_EQ(h, cpu.grid().height);
+  EXPECT_DOUBLE_EQ(ocl.gradientScale(), cpu.gradientScale());
+  EXPECT_EQ(ocl.quadrantRadius(), cpu.quadrantRadius());
+
+  // 1. Bayer subsampling to packed chroma (integer): exact where the grid reads.
+  const int ws = raw.cols / 2, hs = raw.rows / 2;
+  ThreadPool pool(1);
+  RemapTable table;
+  table.build(cam, cpu.grid(), opt.plane_height, 2, pool);
+  EXPECT_TRUE(table.index == cfg.remap_index && table.frac == cfg.remap_frac);
+  EXPECT_EQ(cfg.region_x_begin, table.x_begin);
+  EXPECT_EQ(cfg.region_y_end, table.y_end);
+  ChromaFixed fixed{};
+  for (int i = 0; i < 3; ++i) fixed.a[i] = cfg.chroma_a[i], fixed.b[i] = cfg.chroma_b[i];
+  const ChromaTransform t = ChromaTransform::of(opt.color);
+  EXPECT_EQ(fixed.a[0], static_cast<int>(std::lround(t.a[0] * 1024)));
+  std::vector<uint32_t> packed(static_cast<size_t>(ws) * hs, 0);
+  bayerChromaRows(raw, BayerPattern::RGGB, fixed, packed.data(), table.y_begin, table.y_end, table.x_begin,
+                  table.x_end);
+  const auto opacked = e.readPackedChroma();
+  long packed_diff = 0;
+  for (int y = table.y_begin; y < table.y_end; ++y)
+    for (int x = table.x_begin; x < table.x_end; ++x)
+      packed_diff += opacked[static_cast<size_t>(y) * ws + x] != packed[static_cast<size_t>(y) * ws + x];
+  EXPECT_EQ(packed_diff, 0) << "Bayer subsampling / packed chroma differs";
+
+  // Frame brightness as the CPU reference measures it (raw Bayer sites).
+  uint64_t sum = 0, n = 0;
+  for (int y = table.y_begin; y < table.y_end; y += 16) {
+    const uint8_t* r0 = raw.ptr<uint8_t>(2 * y);
+    const uint8_t* r1 = raw.ptr<uint8_t>(2 * y + 1);
+    for (int x = table.x_begin; x < table.x_end; x += 4) {
+      const int all = r0[2 * x] + r0[2 * x + 1] + r1[2 * x] + r1[2 * x + 1];
+      const int r = r0[2 * x], b = r1[2 * x + 1];  // RGGB
+      sum += 2 * (r + b) + (all - r - b), n += 6;
+    }
+  }
+  const float luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
+  EXPECT_EQ(e.lastLumaMean(), luma_mean);
+
+  // 2. Rectification of the OpenCL packed chroma: the same float operations
+  // in the same order.
+  std::vector<float> ca(static_cast<size_t>(w) * h), cb(ca.size());
+  rectifyChromaRows(table, opacked.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(), cb.data(), 0,
+                    h);
+  const auto chroma = e.readChroma();
+  float worst = 0;
+  for (size_t i = 0; i < ca.size(); ++i)
+    worst = std::max({worst, std::abs(chroma[2 * i] - ca[i]), std::abs(chroma[2 * i + 1] - cb[i])});
+  EXPECT_LE(worst, 1e-6f) << "chroma planes differ";
+
+  // 3. Gradient dot product from the OpenCL chroma planes: fixed point, at
+  // most one unit apart.
+  std::vector<float> oa(ca.size()), ob(ca.size());
+  for (size_t i = 0; i < ca.size(); ++i) oa[i] = chroma[2 * i], ob[i] = chroma[2 * i + 1];
+  std::vector<int32_t> g(ca.size());
+  gradientDotRows(oa.data(), ob.data(), w, h, cpu.gradientScale(), g.data(), 0, h);
+  const auto og = e.readGradient();
+  int32_t gworst = 0;
+  for (size_t i = 0; i < g.size(); ++i) gworst = std::max(gworst, std::abs(og[i] - g[i]));
+  EXPECT_LE(gworst, 1) << "gradient differs";
+
+  // 4. Summed-area table from the OpenCL gradient: integer, exact.
+  std::vector<uint32_t> sat((w + 1ull) * (h + 1ull), 0);
+  satRowPrefixRows(og.data(), w, h, sat.data(), 0, h);
+  satColumnPrefix(sat.data(), w, h, 0, w + 1);
+  EXPECT_TRUE(e.readSat() == sat) << "summed-area table differs";
+
+  // 5. Score from the table: exact; and against the CPU pipeline's own plane.
+  std::vector<float> score(ca.size());
+  quadrantMinScoreRows(sat.data(), w, h, cfg.quadrant_radius, cfg.inner_corner, score.data(), 0, h);
+  const auto os = e.readScore();
+  EXPECT_TRUE(os == score) << "blob score differs";
+  const float* cpu_score = cpu.scoreData();
+  float sworst = 0, smax = 0;
+  for (size_t i = 0; i < os.size(); ++i)
+    sworst = std::max(sworst, std::abs(os[i] - cpu_score[i])), smax = std::max(smax, std::abs(cpu_score[i]));
+  EXPECT_LE(sworst, 1e-4f * smax) << "score plane differs from the CPU pipeline's";
+
+  // 6. Peaks: the whole-frame blob lists.
+  EXPECT_GE(cpu_blobs.blobs.size(), 11u);  // 10 pattern blobs and the ball
+  expectSameBlobs(cpu_blobs, ocl_blobs, "robot scene");
+}
+
+struct FrameCase {
+  const char* name;
+  BayerPattern bayer;
+  ColorSpace color;
+  BlobScoreKind score;
+  double gain;
+  double noise;
+};
+
+class OpenClFrames : public ::testing::TestWithParam<FrameCase> {};
+
+TEST_P(OpenClFrames, BlobsMatchTheCpuReference) {
+  DV_REQUIRE_OPENCL();
+  const auto& p = GetParam();
+  const auto cam = smallCamera(p.bayer);
+  const auto field = FieldModel::divisionB();
+  PaintedScene scene = robotScene();
+  scene.gain = p.gain;
+  scene.noise_sigma = p.noise;
+  const cv::Mat raw = scene.render(cam, p.bayer);
+  PipelineOptions opt;
+  opt.bayer = p.bayer;
+  opt.color = p.color;
+  opt.score = p.score;
+  CpuPipeline cpu(cam, field, opt);
+  OpenClPipeline ocl(cam, field, opt, *testDevice());
+  for (int frame = 0; frame < 2; ++frame) {  // buffers are reused: a second frame must agree too
+    BlobList a, b;
+    ASSERT_TRUE(cpu.process(raw, a)) << cpu.lastError();
+    ASSERT_TRUE(ocl.process(raw, b)) << ocl.lastError();
+    EXPECT_GE(a.blobs.size(), 5u) << p.name;
+    expectSameBlobs(a, b, p.name);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Variants, OpenClFrames,
+    ::testing::Values(FrameCase{"rggb_drgb_quadrant", BayerPattern::RGGB, ColorSpace::DRGB, BlobScoreKind::QuadrantMin, 1, 1.5},
+                      FrameCase{"bggr_yuv_quadrant_dark", BayerPattern::BGGR, ColorSpace::YUV, BlobScoreKind::QuadrantMin, 0.4, 1},
+                      FrameCase{"grbg_drgb_circle", BayerPattern::GRBG, ColorSpace::DRGB, BlobScoreKind::CircleMin, 1, 1},
+                      FrameCase{"bgr_drgb_quadrant", BayerPattern::None, ColorSpace::DRGB, BlobScoreKind::QuadrantMin, 1, 1},
+                      FrameCase{"bgr_yuv_circle", BayerPattern::None, ColorSpace::YUV, BlobScoreKind::CircleMin, 1.2, 0}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// A rendered scene (ray-cast renderer, carpet texture, lighting, noise, lens
+// blur) through both backends, and the detector on both blob lists.
+TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
+  DV_REQUIRE_OPENCL();
+  SceneSpec spec = defaultScene();
+  spec.antialias = 1;
+  spec.frames = 1;
+  Renderer renderer(spec);
+  const auto geo = renderer.geometry();
+  const RenderedFrame frame = renderer.render(0, 0);
+  const CameraModel cam(spec.cameras[0].calib);
+  PipelineOptions opt;
+  CpuPipeline cpu(cam, spec.field, opt);
+  OpenClPipeline ocl(cam, spec.field, opt, *testDevice());
+  BlobList a, b;
+  ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
+  ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
+  EXPECT_GE(a.blobs.size(), 10u);
+  expectSameBlobs(a, b, "rendered scene");
+
+  DetectorOptions dopt;
+  dopt.tracking = false;
+  Detector da(cam, spec.field, dopt), db(cam, spec.field, dopt);
+  Detections ra, rb;
+  da.process(a, 0, ra);
+  db.process(b, 0, rb);
+  ASSERT_EQ(ra.robots.size(), rb.robots.size());
+  ASSERT_EQ(ra.balls.size(), rb.balls.size());
+  for (size_t i = 0; i < ra.robots.size(); ++i) {
+    EXPECT_EQ(ra.robots[i].team, rb.robots[i].team);
+    EXPECT_EQ(ra.robots[i].id, rb.robots[i].id);
+    EXPECT_NEAR(ra.robots[i].position.x, rb.robots[i].position.x, 0.5);
+    EXPECT_NEAR(ra.robots[i].position.y, rb.robots[i].position.y, 0.5);
+    EXPECT_NEAR(ra.robots[i].orientation, rb.robots[i].orientation, 1e-3);
+  }
+  for (size_t i = 0; i < ra.balls.size(); ++i) {
+    EXPECT_NEAR(ra.balls[i].position.x, rb.balls[i].position.x, 0.5);
+    EXPECT_NEAR(ra.balls[i].position.y, rb.balls[i].position.y, 0.5);
+  }
+  EXPECT_FALSE(ra.robots.empty());
+}
+
+TEST(OpenClErrors, BadFramesAreRejectedWithTheCpuReferenceMessage) {
+  DV_REQUIRE_OPENCL();
+  const auto cam = smallCamera(BayerPattern::RGGB);
+  const auto field = FieldModel::divisionB();
+  CpuPipeline cpu(cam, field, {});
+  OpenClPipeline ocl(cam, field, {}, *testDevice());
+  const cv::Mat frames[] = {cv::Mat(), cv::Mat(100, 100, CV_8UC1, cv::Scalar(0)),
+                            cv::Mat(480, 640, CV_16UC1, cv::Scalar(0)), cv::Mat(480, 640, CV_8UC3, cv::Scalar(0)),
+                            cv::Mat(480, 640, CV_8UC4, cv::Scalar(0))};
+  for (const auto& f : frames) {
+    BlobList a, b;
+    EXPECT_FALSE(cpu.process(f, a));
+    EXPECT_FALSE(ocl.process(f, b));
+    EXPECT_EQ(ocl.lastError(), cpu.lastError());
+    EXPECT_TRUE(b.blobs.empty());
+  }
+  // A good frame after bad ones still works.
+  BlobList b;
+  EXPECT_TRUE(ocl.process(robotScene().render(cam, BayerPattern::RGGB), b)) << ocl.lastError();
+  EXPECT_FALSE(b.blobs.empty());
+}
+
+TEST(OpenClErrors, CameraProblemsAreInputErrorsAsOnTheCpu) {
+  DV_REQUIRE_OPENCL();
+  const auto field = FieldModel::divisionB();
+  const auto far_away = topDownCamera(20000, 20000, 3000, 1000, 640, 480);
+  EXPECT_THROW(OpenClPipeline(far_away, field, {}, *testDevice()), InputError);
+  auto calib = smallCamera(BayerPattern::RGGB).calibration();
+  calib.image_width = 0;
+  EXPECT_THROW(OpenClPipeline(CameraModel(calib), field, {}, *testDevice()), InputError);
+}
+
+TEST(OpenClBackend, ParsesBackendNames) {
+  Backend b;
+  EXPECT_TRUE(parseBackend("auto", b));
+  EXPECT_EQ(b, Backend::Auto);
+  EXPECT_TRUE(parseBackend("CPU", b));
+  EXPECT_EQ(b, Backend::Cpu);
+  EXPECT_TRUE(parseBackend("opencl", b));
+  EXPECT_EQ(b, Backend::OpenCl);
+  EXPECT_FALSE(parseBackend("cuda", b));
+  EXPECT_FALSE(parseBackend(nullptr, b));
+}
+
+TEST(OpenClBackend, ChoiceFallbackAndErrors) {
+  const auto cam = smallCamera(BayerPattern::RGGB);
+  const auto field = FieldModel::divisionB();
+  std::string why;
+  auto cpu = makePipeline(cam, field, {}, {Backend::Cpu, "", ""}, &why);
+  EXPECT_EQ(cpu->name(), "cpu");
+
+  // auto: a GPU if there is one, never an OpenCL CPU device (PoCL is slower
+  // than the CPU reference); the reason is given.
+  auto devices = listOpenClDevices();
+  const bool has_gpu = std::any_of(devices.begin(), devices.end(), [](const auto& d) { return d.is_gpu; });
+  auto chosen = makePipeline(cam, field, {}, {Backend::Auto, "", ""}, &why);
+  if (has_gpu) {
+    EXPECT_EQ(chosen->name().rfind("opencl", 0), 0u) << why;
+  } else {
+    EXPECT_EQ(chosen->name(), "cpu");
+    EXPECT_NE(why.find("CPU reference"), std::string::npos) << why;
+  }
+
+  // opencl with a device that does not exist: an InputError that lists what exists.
+  try {
+    makePipeline(cam, field, {}, {Backend::OpenCl, "", "no-such-device-anywhere"}, &why);
+    FAIL() << "an unknown device was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--backend opencl"), std::string::npos) << what;
+    if (!devices.empty()) EXPECT_NE(what.find(devices.front().device_name), std::string::npos) << what;
+  }
+  // auto with an unknown device falls back to the CPU reference.
+  auto fallback = makePipeline(cam, field, {}, {Backend::Auto, "", "no-such-device-anywhere"}, &why);
+  EXPECT_EQ(fallback->name(), "cpu");
+
+  if (!devices.empty()) {
+    // opencl on the installed device (any type) works and finds blobs.
+    auto ocl = makePipeline(cam, field, {}, {Backend::OpenCl, "0", "0"}, &why);
+    EXPECT_EQ(ocl->name().rfind("opencl", 0), 0u);
+    BlobList b;
+    EXPECT_TRUE(ocl->process(robotScene().render(cam, BayerPattern::RGGB), b)) << ocl->lastError();
+    EXPECT_GE(b.blobs.size(), 11u);
+    EXPECT_GT(ocl->times().total_ms, 0);
+  }
+}
+
+}  // namespace
+}  // namespace dv
