@@ -194,8 +194,9 @@ TEST(PipelineBlobs, SameBlobsAtThirtyPercentBrightness) {
   // Normalised scores barely move with exposure.
   for (const auto& b : bright.blobs)
     for (const auto& d : dark.blobs)
-      if (std::hypot(b.position.x - d.position.x, b.position.y - d.position.y) < 1)
+      if (std::hypot(b.position.x - d.position.x, b.position.y - d.position.y) < 1) {
         EXPECT_NEAR(d.score / b.score, 1.0, 0.25);
+      }
 }
 
 TEST(PipelineBlobs, NoBlobsOnNoisyCarpet) {
