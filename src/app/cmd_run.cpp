@@ -21,7 +21,7 @@
 #include "eval/metrics.h"
 #include "geometry/geometry_io.h"
 #include "geometry/proto_json.h"
-#include "io/detection_frame.h"
+#include "detection/detection_frame.h"
 #include "io/frame_source.h"
 #include "io/ssl_log.h"
 #include "net/vision_publisher.h"

@@ -12,8 +12,9 @@
 //  - Publisher -> everyone: SSL_WrapperPacket with only `geometry` and
 //    `source` on 224.5.23.2:10006, every interval (SSL-Vision: 3 s) and at
 //    once when a calibration changes. The source is kGeometryPacketSource,
-//    SSL_SOURCE_OTHER, the same as dotvision's detection packets (io), so a
-//    consumer sees one source for the whole vision stream.
+//    SSL_SOURCE_SSL_VISION, the same as dotvision's detection packets: it
+//    stands in for the league's vision system, and consumers that filter on
+//    the source expect that value.
 //  - Datagrams from addresses not in `allowed_sources`, that do not parse,
 //    or whose calibrations are implausible or have ids outside
 //    0..num_cameras-1 are dropped, counted, and logged at most once per
@@ -32,7 +33,7 @@
 namespace dv {
 
 inline constexpr uint16_t kGeometryListenPort = 10013;
-inline constexpr dv::ssl::SSL_Source kGeometryPacketSource = dv::ssl::SSL_SOURCE_OTHER;
+inline constexpr dv::ssl::SSL_Source kGeometryPacketSource = dv::ssl::SSL_SOURCE_SSL_VISION;
 
 struct GeometryPublisherOptions {
   std::string listen_addr = "0.0.0.0";  // local IPv4 address for processors' packets

@@ -1,4 +1,4 @@
-#include "io/detection_frame.h"
+#include "detection/detection_frame.h"
 
 namespace dv {
 

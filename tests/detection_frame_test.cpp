@@ -2,7 +2,7 @@
 // and a message that stays valid on the wire when reused.
 #include <gtest/gtest.h>
 
-#include "io/detection_frame.h"
+#include "detection/detection_frame.h"
 
 namespace dv {
 namespace {

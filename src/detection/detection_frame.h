@@ -1,7 +1,6 @@
 #pragma once
 // Detections of one camera frame -> the league's SSL_DetectionFrame, and the
 // wrapper packet that carries it on the wire and in logs.
-// (Reads detection's plain result structs only; no code of that module.)
 #include <cstdint>
 
 #include "detection/detector.h"
