@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "geometry/calibration/calibration_quality.h"
 #include "geometry/calibration/camera_params.h"
 
 namespace dv {
@@ -104,6 +105,9 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
           new ceres::AutoDiffCostFunction<SharedLineResidual, 1, 4, 3, 3, 1>(
               new SharedLineResidual(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px)),
           loss, p.intrinsics, p.rotation, p.position, &offsets[m.element]);
+    // Principal point and position trade against each other along a nearly
+    // flat valley (thesis eq. 5.8); the prior keeps the point near each
+    // camera's own fit.
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PrincipalPointPrior, 2, 4>(new PrincipalPointPrior(
                                  p.intrinsics[1], p.intrinsics[2], o.principal_point_sigma_px)),
                              nullptr, p.intrinsics);
@@ -123,7 +127,16 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   const double after = cost(refined, offsets);
-  if (std::isfinite(after) && after <= result.cost_before) {
+  // A joint correction is small: a camera whose positions at robot height
+  // would move by more than the line offsets allow has slid, not improved.
+  bool small = true;
+  for (size_t c = 0; c < cams.size(); ++c) {
+    const auto& in = cams[c].calibration;
+    const CameraCalibration moved = refined[c].toCalibration(in.camera_id, in.image_width, in.image_height);
+    const FieldRect everywhere{-1e6, 1e6, -1e6, 1e6};
+    if (meanFieldPositionError(in, moved, 150, everywhere, 64) > 3 * o.line_offset_sigma_mm) small = false;
+  }
+  if (small && std::isfinite(after) && after <= result.cost_before) {
     result.accepted = true;
     result.cost_after = after;
     result.line_offsets_mm = offsets;

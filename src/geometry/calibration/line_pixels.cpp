@@ -60,8 +60,8 @@ cv::Mat detectLinePixels(const cv::Mat& image, const LinePixelOptions& o) {
   const cv::Mat gray = lineBrightness(image);
   // Colour is judged on a smoothed image: demosaicing paints thin white
   // lines with alternating colour fringes.
-  cv::Mat bgr = image.channels() == 1 ? toBgrImage(image, "image") : image;
-  cv::blur(bgr, bgr, cv::Size(5, 5));
+  cv::Mat bgr;
+  cv::blur(image.channels() == 1 ? toBgrImage(image, "image") : image, bgr, cv::Size(5, 5));
   cv::Mat g16;
   gray.convertTo(g16, CV_16S);
   const int h = std::max(1, o.half_width_px);
