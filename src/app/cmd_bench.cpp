@@ -36,7 +36,7 @@ struct BenchArgs {
   int threads = 0;
   int width = 2448;
   int height = 2048;
-  std::string backend = "cpu";
+  std::string backend = "auto";
   std::string opencl_platform;
   std::string opencl_device;
   bool json = false;
@@ -84,8 +84,8 @@ CommandFn addBenchCommand(CLI::App& root) {
   cmd->add_option("--threads", a->threads, "pipeline threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--width", a->width, "synthetic image width (default 2448)")->check(CLI::Range(64, 8192));
   cmd->add_option("--height", a->height, "synthetic image height (default 2048)")->check(CLI::Range(64, 8192));
-  cmd->add_option("--backend", a->backend, "pixel pipeline backend: cpu|opencl|auto (default cpu)")
-      ->default_str("cpu");
+  cmd->add_option("--backend", a->backend, "pixel pipeline backend: auto|cpu|opencl (auto: an OpenCL GPU if there is one, else the CPU reference)")
+      ->default_str("auto");
   cmd->add_option("--opencl-platform", a->opencl_platform, "OpenCL platform: index or name substring");
   cmd->add_option("--opencl-device", a->opencl_device, "OpenCL device: index or name substring");
   cmd->add_flag("--json", a->json, "print the result as one JSON object");

@@ -50,7 +50,7 @@ struct RunArgs {
   std::string debug_dir;
   long debug_frame = 0;
   int threads = 0;
-  std::string backend = "cpu";
+  std::string backend = "auto";
   std::string opencl_platform;
   std::string opencl_device;
   long max_frames = -1;
@@ -415,8 +415,8 @@ CommandFn addRunCommand(CLI::App& root) {
   cmd->add_option("--debug-frame", a->debug_frame, "index of the frame to inspect (default 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", a->threads, "pipeline threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--backend", a->backend, "pixel pipeline backend: cpu|opencl|auto (default cpu)")
-      ->default_str("cpu");
+  cmd->add_option("--backend", a->backend, "pixel pipeline backend: auto|cpu|opencl (auto: an OpenCL GPU if there is one, else the CPU reference)")
+      ->default_str("auto");
   cmd->add_option("--opencl-platform", a->opencl_platform, "OpenCL platform: index or name substring");
   cmd->add_option("--opencl-device", a->opencl_device, "OpenCL device: index or name substring");
   cmd->add_option("--max-frames", a->max_frames, "stop after this many frames")->check(CLI::NonNegativeNumber);
