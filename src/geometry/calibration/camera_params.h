@@ -5,6 +5,7 @@
 // and for Ceres' jets.
 #include <ceres/rotation.h>
 
+#include <cmath>
 #include <cstdint>
 
 #include "core/units.h"
@@ -61,6 +62,22 @@ bool pointReprojection(const T* intr, const T* rot, const T* pos, const FieldPoi
   residual[1] = intr[0] * (ny * s - pc[1] / pc[2]);
   return true;
 }
+
+// Keeps the principal point near a prior (cx, cy) with spread sigma px; the
+// line fits cannot see it well on their own.
+struct PrincipalPointPrior {
+  PrincipalPointPrior(double cx, double cy, double sigma) : cx(cx), cy(cy), sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* intr, T* r) const {
+    r[0] = (intr[1] - T(cx)) / T(sigma);
+    r[1] = (intr[2] - T(cy)) / T(sigma);
+    return true;
+  }
+  double cx, cy, sigma;
+};
+
+// Cauchy cost of a residual d at scale s (the robust loss used to compare fits).
+inline double cauchyCost(double d, double s) { return s * s * std::log1p(d * d / (s * s)); }
 
 // Whether a field point lies in front of the camera.
 inline bool inFrontOfCamera(const double* rot, const double* pos, const FieldPoint& p) {

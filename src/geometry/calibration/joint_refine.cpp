@@ -36,19 +36,6 @@ struct OffsetPrior {
   double sigma;
 };
 
-struct PrincipalPointPrior {
-  PrincipalPointPrior(double cx, double cy, double sigma) : cx(cx), cy(cy), sigma(sigma) {}
-  template <typename T>
-  bool operator()(const T* intr, T* r) const {
-    r[0] = (intr[1] - T(cx)) / T(sigma);
-    r[1] = (intr[2] - T(cy)) / T(sigma);
-    return true;
-  }
-  double cx, cy, sigma;
-};
-
-double cauchy(double d, double s) { return s * s * std::log1p(d * d / (s * s)); }
-
 }  // namespace
 
 JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const FieldModel& field,
@@ -78,7 +65,7 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
         double r;
         SharedLineResidual res(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px);
         if (!res(ps[c].intrinsics, ps[c].rotation, ps[c].position, &off[m.element], &r)) r = o.gate_px;
-        sum += cauchy(std::min(std::abs(r), o.gate_px), o.loss_scale_px);
+        sum += cauchyCost(std::min(std::abs(r), o.gate_px), o.loss_scale_px);
         ++n;
       }
     for (double v : off) sum += 0.5 * (v / o.line_offset_sigma_mm) * (v / o.line_offset_sigma_mm);

@@ -36,17 +36,6 @@ struct PointResidual {
   double sigma;
 };
 
-struct IntrinsicsPrior {
-  IntrinsicsPrior(double cx, double cy, double sigma) : cx(cx), cy(cy), sigma(sigma) {}
-  template <typename T>
-  bool operator()(const T* intr, T* r) const {
-    r[0] = (intr[1] - T(cx)) / T(sigma);
-    r[1] = (intr[2] - T(cy)) / T(sigma);
-    return true;
-  }
-  double cx, cy, sigma;
-};
-
 using Match = LinePixelMatch;
 
 }  // namespace
@@ -72,8 +61,6 @@ std::vector<LinePixelMatch> matchLinePixels(const CameraParams& p, const std::ve
 
 namespace {
 
-double cauchy(double d, double s) { return s * s * std::log1p((d * d) / (s * s)); }
-
 }  // namespace
 
 double robustLineCost(const CameraParams& p, const std::vector<ImagePx>& pixels,
@@ -85,8 +72,8 @@ double robustLineCost(const CameraParams& p, const std::vector<ImagePx>& pixels,
   // Unmatched pixels count as far away, so that sliding off the lines to
   // match fewer pixels cannot look better.
   double sum = 0;
-  for (const auto& x : m) sum += cauchy(x.distance_px, loss_scale_px);
-  sum += double(pixels.size() - m.size()) * cauchy(gate_px, loss_scale_px);
+  for (const auto& x : m) sum += cauchyCost(x.distance_px, loss_scale_px);
+  sum += double(pixels.size() - m.size()) * cauchyCost(gate_px, loss_scale_px);
   return sum / double(pixels.size());
 }
 
@@ -120,8 +107,8 @@ LineFitResult refineOnLines(const CameraParams& start, const std::vector<ImagePx
         problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointResidual, 2, 4, 3, 3>(
                                      new PointResidual(pt.field, pt.image, o.point_sigma_px)),
                                  new ceres::HuberLoss(2.0), cp.intrinsics, cp.rotation, cp.position);
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<IntrinsicsPrior, 2, 4>(
-                                   new IntrinsicsPrior(cx0, cy0, o.principal_point_sigma_px)),
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PrincipalPointPrior, 2, 4>(
+                                   new PrincipalPointPrior(cx0, cy0, o.principal_point_sigma_px)),
                                nullptr, cp.intrinsics);
       std::vector<int> fixed_intr;
       if (!o.fit_principal_point) fixed_intr.push_back(1), fixed_intr.push_back(2);
