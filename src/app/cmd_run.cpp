@@ -20,6 +20,7 @@
 #include "dotvision/ssl_wrapper.pb.h"
 #include "eval/metrics.h"
 #include "geometry/geometry_io.h"
+#include "net/geometry_publisher.h"
 #include "geometry/proto_json.h"
 #include "detection/detection_frame.h"
 #include "io/frame_source.h"
@@ -54,6 +55,7 @@ struct RunArgs {
   std::string opencl_platform;
   std::string opencl_device;
   long max_frames = -1;
+  double geometry_timeout = 10;
   bool quiet = false;
 };
 
@@ -62,7 +64,9 @@ struct RunArgs {
 // a geometry packet too, so it is self-contained.
 class Outputs {
  public:
-  Outputs(const RunArgs& a, const ssl::SSL_GeometryData& geometry) {
+  // publish_geometry: false when the geometry came from the network, where
+  // the geometry publisher already repeats it.
+  Outputs(const RunArgs& a, const ssl::SSL_GeometryData& geometry, bool publish_geometry = true) {
     if (!a.no_publish) {
       VisionPublisherOptions po;
       po.group = a.multicast_group;
@@ -76,7 +80,7 @@ class Outputs {
         if (!a.multicast_interface.empty()) throw;
         std::fprintf(stderr, "dotvision run: warning: not publishing: %s\n", e.what());
       }
-      if (publisher_) {
+      if (publisher_ && publish_geometry) {
         publisher_->setGeometry(geometry);
         publisher_->publishGeometry(monotonicSeconds());
       }
@@ -288,21 +292,49 @@ std::string cameraIds(const Geometry& g) {
   return out.empty() ? "none" : out;
 }
 
+std::string formatSeconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f s", s);
+  return buf;
+}
+
+// The geometry of a run on a real source: from --geometry, or else from the
+// geometry publisher on the vision group (the field and this camera's
+// calibration), waiting at most --geometry-timeout seconds.
+Geometry sourceGeometry(const RunArgs& a, bool& from_network) {
+  from_network = a.geometry.empty();
+  if (!from_network) return loadGeometry(a.geometry);
+  if (!a.camera_id)
+    throw InputError("command line", "--source without --geometry needs --camera-id (to take that "
+                                     "camera's calibration from the geometry publisher)");
+  GeometryReceiveOptions ro;
+  ro.group = a.multicast_group;
+  ro.port = a.multicast_port;
+  ro.interface_addr = a.multicast_interface;
+  auto g = receiveGeometry(*a.camera_id, a.geometry_timeout, ro);
+  if (!g)
+    throw InputError("udp " + a.multicast_group + ":" + std::to_string(a.multicast_port),
+                     "no geometry with a calibration for camera " + std::to_string(*a.camera_id) +
+                         " within " + formatSeconds(a.geometry_timeout) +
+                         " (run `dotvision geometry`, or pass --geometry)");
+  return *g;
+}
+
 int runOnSource(const RunArgs& a) {
-  if (a.geometry.empty())
-    throw InputError("command line", "--source needs --geometry (SSL_GeometryData as canonical JSON)");
-  const Geometry geometry = loadGeometry(a.geometry);
+  bool from_network = false;
+  const Geometry geometry = sourceGeometry(a, from_network);
+  const std::string geometry_source = from_network ? std::string("network geometry") : a.geometry;
   const CameraCalibration* calibration = nullptr;
   if (a.camera_id) {
     calibration = geometry.camera(*a.camera_id);
     if (!calibration)
-      throw InputError(a.geometry, "no calibration for camera id " + std::to_string(*a.camera_id) +
-                                       " (calibrations present: " + cameraIds(geometry) + ")");
+      throw InputError(geometry_source, "no calibration for camera id " + std::to_string(*a.camera_id) +
+                                            " (calibrations present: " + cameraIds(geometry) + ")");
   } else if (geometry.cameras.size() == 1) {
     calibration = &geometry.cameras.front();
   } else {
-    throw InputError("command line", "--camera-id is needed: " + a.geometry + " has calibrations for cameras " +
-                                         cameraIds(geometry));
+    throw InputError("command line", "--camera-id is needed: " + geometry_source +
+                                         " has calibrations for cameras " + cameraIds(geometry));
   }
   FrameSourceOptions so;
   so.fps = a.fps;
@@ -310,7 +342,7 @@ int runOnSource(const RunArgs& a) {
   so.scene_camera = calibration->camera_id;
   std::unique_ptr<FrameSource> source = openFrameSource(a.source, so);
 
-  Outputs outputs(a, toProto(geometry));
+  Outputs outputs(a, toProto(geometry), !from_network);
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, false, {}};
   std::vector<Channel> channels(1);
   channels[0].calibration = *calibration;
@@ -394,7 +426,12 @@ CommandFn addRunCommand(CLI::App& root) {
                   "image file, directory of images (sorted by name; in a `dotvision synth` directory only "
                   "the chosen camera's frames), quoted glob ('dir/*.png') or video file. Color images are "
                   "RGB; 8-bit single-channel images are Bayer mosaics");
-  cmd->add_option("--geometry", a->geometry, "SSL_GeometryData as canonical JSON (or YAML)");
+  cmd->add_option("--geometry", a->geometry,
+                  "SSL_GeometryData as canonical JSON (or YAML); without it, a --source run takes the "
+                  "field and its calibration from the geometry publisher on the vision group");
+  cmd->add_option("--geometry-timeout", a->geometry_timeout,
+                  "seconds to wait for network geometry (default 10)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--camera-id", a->camera_id, "camera id whose calibration is used");
   cmd->add_option("--scene", a->scene,
                   "without --source: a scene YAML file or preset name instead of the built-in scene");
