@@ -14,13 +14,16 @@ struct PipelineOptions {
   double plane_height = 150;  // mm, rectification plane (max robot height)
   // Blob score threshold. Scores are ratios (weakest quadrant's mean gradient
   // dot product over the window's mean gradient energy plus a small floor, in
-  // exposure-normalised chroma), so one value serves every exposure, light
-  // level and resolution. Measured on the synthetic scenes seen from above
-  // (normal, uneven light, dark and noisy, blue white balance, gray carpet,
-  // motion blur): center blobs and balls 0.49..1.2, side blobs 0.28..1;
-  // carpet texture and noise mostly below 0.3. Line crossings can score like
-  // blobs; near-neutral blobs are dropped by color (see cpu_pipeline.cpp).
-  double threshold = 0.28;
+  // exposure-normalised chroma), so one value serves every exposure and light
+  // level; the grid is never coarser than kMaxGridScaleMm, so the windows are
+  // the same in mm at 1224 x 1024 and 2448 x 2048. Measured on the synthetic
+  // scenes seen from above (normal, uneven light, dark and noisy, blue white
+  // balance, gray carpet, motion blur): at 2448 x 2048 side blobs score
+  // 0.3..1; at 1224 x 1024 (blurrier blobs) mostly 0.25..0.7, a few below;
+  // carpet texture and noise mostly below 0.2 (0.2 lets dark, noisy carpet
+  // at 1224 x 1024 through). Line crossings can score like blobs;
+  // near-neutral blobs are dropped by color (see cpu_pipeline.cpp).
+  double threshold = 0.24;
   int max_blobs = 2000;
   int threads = 0;  // 0 = all cores
 };

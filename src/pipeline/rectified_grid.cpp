@@ -66,7 +66,14 @@ std::optional<RectifiedGrid> computeRectifiedGrid(const CameraModel& camera,
   }
   if (count == 0) return std::nullopt;
   RectifiedGrid g;
-  g.scale = sum / count;
+  // A grid no coarser than kMaxGridScaleMm: the blob score's windows and
+  // gradient distance are whole or third cells, and a 20 mm side blob must
+  // span enough cells for the quadrant rim to stay inside its window. A
+  // low-resolution camera (e.g. 1224 x 1024 at 4 m, ~13 mm per sample) is
+  // therefore resampled finer (bilinear, so no new detail, but the same
+  // window geometry in mm as a high-resolution camera), and the shipped
+  // defaults hold for both.
+  g.scale = std::min(sum / count, kMaxGridScaleMm);
   g.width = std::max(1, static_cast<int>(std::ceil((x_max - x_min) / g.scale)));
   g.height = std::max(1, static_cast<int>(std::ceil((y_max - y_min) / g.scale)));
   g.x0 = x_min + 0.5 * g.scale;
