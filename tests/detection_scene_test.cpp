@@ -227,7 +227,8 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   // robots' side blobs cover only a few cells along the viewing direction
   // and score below the threshold (recall 0.73 over the 6 placements of
   // DV_SCENE_FULL=1, every robot whose blobs reached the detector found).
-  // Its stretched ball is found since the threshold went to 0.24.
+  // Its stretched ball is found since its grid is resampled to 5.6 mm
+  // (kResampleAboveMm) and the threshold went to 0.24 (6 of 6 placements).
   const bool side = std::string(GetParam()) == "side_view";
   EXPECT_GE(s.recall(), side ? 0.7 : 0.97);
   EXPECT_GE(s.ballRecall(), 0.97);

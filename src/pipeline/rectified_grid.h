@@ -19,14 +19,17 @@ struct RectifiedGrid {
   GridPx toGrid(FieldMm f) const { return {(f.x - x0) / scale, (y0 - f.y) / scale}; }
 };
 
-// Coarsest grid the pipeline works on, mm per cell (see computeRectifiedGrid).
-inline constexpr double kMaxGridScaleMm = 5.6;
+// A camera whose samples lie further apart on the field than
+// kResampleAboveMm gets a grid of kLowResolutionGridMm instead (see
+// computeRectifiedGrid).
+inline constexpr double kResampleAboveMm = 6.8;
+inline constexpr double kLowResolutionGridMm = 5.6;
 
 // Grid of the part of the field plus boundary that the camera sees on the
 // plane z = plane_height (axis-parallel box), at the mean field distance
 // between neighbouring samples of the image the grid is resampled from
 // (`sample_step` full pixels apart: 2 for Bayer subsampling, 1 for RGB),
-// but no coarser than kMaxGridScaleMm.
+// except for low-resolution cameras (see kResampleAboveMm).
 // Empty when the camera sees nothing of it.
 std::optional<RectifiedGrid> computeRectifiedGrid(const CameraModel& camera,
                                                   const FieldModel& field, double plane_height,
