@@ -11,36 +11,18 @@
 #include "pipeline/kernels.h"
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
+#include "pipeline/score_windows.h"
 #include "pipeline/thread_pool.h"
 
 namespace dv {
 
 namespace {
 
-// Largest blob radius (center blob, thesis §5.2.7.3) and the radius over
-// which a blob's color is averaged: the side blob radius minus a margin for
-// blur and position error.
-constexpr double kMaxBlobRadiusMm = 25;
-constexpr double kColorRadiusMm = 13;
-// Smallest (max - min) / max of a blob's mean color: pattern colors and the
-// ball are 0.6..0.9, white lines with carpet around them 0.1..0.2.
-constexpr float kMinBlobSaturation = 0.25f;
-// Peaks closer than this belong to the same blob.
-constexpr double kMinBlobDistanceMm = 20;
-// Inner corner of each quadrant left out of the score (see kernels.h).
-constexpr double kInnerCornerMm = 10;
 // Exposure normalisation: chroma is divided by the frame's mean brightness,
 // so a darker or brighter exposure gives the same values. (Dividing by each
 // cell's own brightness was tried: it lifts dark carpet against white lines
 // until line crossings score like blobs.) Local differences in light (sun
-// patches, shadows) are handled by the ratio score below.
-// The reported score is the weakest quadrant's mean gradient dot product
-// divided by (mean gradient energy in the window + this floor). The ratio is
-// a shape measure: high for round blobs, low for lines, crossings and
-// corners, whose edges carry energy but little diagonal product. The floor
-// (in the luma-normalised chroma units, so independent of exposure) keeps
-// faint texture from reaching high ratios.
-constexpr float kEnergyFloor = 0.01f;
+// patches, shadows) are handled by the ratio score (score_windows.h).
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -85,29 +67,16 @@ struct CpuPipeline::Impl {
     const auto& c = camera.calibration();
     image_w = static_cast<int>(c.image_width);
     image_h = static_cast<int>(c.image_height);
-    const std::string source = "camera " + std::to_string(c.camera_id);
-    if (image_w <= 0 || image_h <= 0)
-      throw InputError(source, "calibration has no image size (pixel_image_width/height)");
-    if (opt.bayer != BayerPattern::None && (image_w % 2 || image_h % 2 || image_w < 4 || image_h < 4))
-      throw InputError(source, "Bayer image size " + std::to_string(image_w) + "x" +
-                                   std::to_string(image_h) + " is not even");
     sample_step = opt.bayer == BayerPattern::None ? 1 : 2;
-    auto g = computeRectifiedGrid(camera, field, opt.plane_height, sample_step);
-    if (!g) throw InputError(source, "camera sees no part of the field at plane height " +
-                                         std::to_string(opt.plane_height) + " mm");
-    grid = *g;
-    if (grid.width < 8 || grid.height < 8 || static_cast<double>(grid.width) * grid.height > 64e6)
-      throw InputError(source, "rectified grid " + std::to_string(grid.width) + "x" +
-                                   std::to_string(grid.height) + " is unusable");
+    grid = checkedGrid(camera, field, opt);
     chroma = ChromaTransform::of(opt.color);
-    // Gradient scale 1/3 * ceil(25 mm / field scale) (thesis §5.2.7.4).
-    gradient_scale = std::ceil(kMaxBlobRadiusMm / grid.scale) / 3.0;
-    quadrant_r = std::max(2, static_cast<int>(std::lround(kMaxBlobRadiusMm / grid.scale)));
-    circle_r = std::max(2.0, kMaxBlobRadiusMm / grid.scale);
-    inner_q = std::clamp(static_cast<int>(std::lround(kInnerCornerMm / grid.scale)), 0, quadrant_r - 1);
-    const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(circle_r) : quadrant_r;
-    margin = window + static_cast<int>(std::floor(gradient_scale)) + 2;
-    color_radius = std::max(1.0, kColorRadiusMm / grid.scale);
+    const ScoreWindows w = scoreWindows(grid.scale, opt.score);
+    gradient_scale = w.gradient_scale;
+    quadrant_r = w.quadrant_radius;
+    circle_r = w.circle_radius;
+    inner_q = w.inner_corner;
+    margin = w.margin;
+    color_radius = w.color_radius;
 
     table.build(camera, grid, opt.plane_height, sample_step, pool);
 

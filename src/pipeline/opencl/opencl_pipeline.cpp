@@ -10,44 +10,19 @@
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/kernels.h"
 #include "pipeline/remap_table.h"
+#include "pipeline/score_windows.h"
 #include "pipeline/thread_pool.h"
 
 namespace dv {
 
-namespace {
-
-// The CPU reference's constants (cpu_pipeline.cpp): largest blob radius, the
-// radius of the mean blob color, the inner quadrant corner left out of the
-// score and the energy floor of the score ratio.
-constexpr double kMaxBlobRadiusMm = 25;
-constexpr double kColorRadiusMm = 13;
-constexpr double kInnerCornerMm = 10;
-constexpr float kEnergyFloor = 0.01f;
-constexpr double kMinBlobDistanceMm = 20;
-constexpr float kMinBlobSaturation = 0.25f;
-
-}  // namespace
 
 OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& field,
                                const PipelineOptions& opt, const OclDeviceInfo& device)
     : camera_(camera), opt_(opt) {
   const auto& c = camera_.calibration();
   const int image_w = static_cast<int>(c.image_width), image_h = static_cast<int>(c.image_height);
-  const std::string source = "camera " + std::to_string(c.camera_id);
-  if (image_w <= 0 || image_h <= 0)
-    throw InputError(source, "calibration has no image size (pixel_image_width/height)");
-  if (opt_.bayer != BayerPattern::None && (image_w % 2 || image_h % 2 || image_w < 4 || image_h < 4))
-    throw InputError(source, "Bayer image size " + std::to_string(image_w) + "x" + std::to_string(image_h) +
-                                 " is not even");
+  grid_ = checkedGrid(camera_, field, opt_);
   const int sample_step = opt_.bayer == BayerPattern::None ? 1 : 2;
-  auto g = computeRectifiedGrid(camera_, field, opt_.plane_height, sample_step);
-  if (!g)
-    throw InputError(source, "camera sees no part of the field at plane height " +
-                                 std::to_string(opt_.plane_height) + " mm");
-  grid_ = *g;
-  if (grid_.width < 8 || grid_.height < 8 || static_cast<double>(grid_.width) * grid_.height > 64e6)
-    throw InputError(source, "rectified grid " + std::to_string(grid_.width) + "x" +
-                                 std::to_string(grid_.height) + " is unusable");
 
   OclEngineConfig cfg;
   cfg.image_width = image_w;
@@ -58,18 +33,16 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   cfg.grid_width = grid_.width;
   cfg.grid_height = grid_.height;
 
-  // Same formulas as CpuPipeline.
-  cfg.gradient_scale = std::ceil(kMaxBlobRadiusMm / grid_.scale) / 3.0;
-  cfg.quadrant_radius = std::max(2, static_cast<int>(std::lround(kMaxBlobRadiusMm / grid_.scale)));
-  cfg.circle_radius = std::max(2.0, kMaxBlobRadiusMm / grid_.scale);
-  cfg.inner_corner =
-      std::clamp(static_cast<int>(std::lround(kInnerCornerMm / grid_.scale)), 0, cfg.quadrant_radius - 1);
+  const ScoreWindows w = scoreWindows(grid_.scale, opt_.score);
+  cfg.gradient_scale = w.gradient_scale;
+  cfg.quadrant_radius = w.quadrant_radius;
+  cfg.circle_radius = w.circle_radius;
+  cfg.inner_corner = w.inner_corner;
   cfg.circle_score = opt_.score == BlobScoreKind::CircleMin;
-  const int window = cfg.circle_score ? static_cast<int>(cfg.circle_radius) : cfg.quadrant_radius;
-  cfg.margin = window + static_cast<int>(std::floor(cfg.gradient_scale)) + 2;
-  cfg.energy_window = cfg.circle_score ? static_cast<int>(std::lround(cfg.circle_radius)) : cfg.quadrant_radius;
+  cfg.margin = w.margin;
+  cfg.energy_window = w.energy_window;
   cfg.energy_floor = kEnergyFloor;
-  cfg.color_radius = std::max(1.0, kColorRadiusMm / grid_.scale);
+  cfg.color_radius = w.color_radius;
   cfg.threshold = static_cast<float>(opt_.threshold);
   cfg.max_blobs = opt_.max_blobs;
   const ChromaTransform chroma = ChromaTransform::of(opt_.color);

@@ -1,0 +1,43 @@
+#include "pipeline/score_windows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+
+namespace dv {
+
+ScoreWindows scoreWindows(double scale, BlobScoreKind kind) {
+  ScoreWindows w;
+  w.gradient_scale = std::ceil(kMaxBlobRadiusMm / scale) / 3.0;
+  w.quadrant_radius = std::max(2, static_cast<int>(std::lround(kMaxBlobRadiusMm / scale)));
+  w.circle_radius = std::max(2.0, kMaxBlobRadiusMm / scale);
+  w.inner_corner = std::clamp(static_cast<int>(std::lround(kInnerCornerMm / scale)), 0, w.quadrant_radius - 1);
+  const bool circle = kind == BlobScoreKind::CircleMin;
+  const int window = circle ? static_cast<int>(w.circle_radius) : w.quadrant_radius;
+  w.margin = window + static_cast<int>(std::floor(w.gradient_scale)) + 2;
+  w.energy_window = circle ? static_cast<int>(std::lround(w.circle_radius)) : w.quadrant_radius;
+  w.color_radius = std::max(1.0, kColorRadiusMm / scale);
+  return w;
+}
+
+RectifiedGrid checkedGrid(const CameraModel& camera, const FieldModel& field, const PipelineOptions& opt) {
+  const auto& c = camera.calibration();
+  const int w = static_cast<int>(c.image_width), h = static_cast<int>(c.image_height);
+  const std::string source = "camera " + std::to_string(c.camera_id);
+  if (w <= 0 || h <= 0) throw InputError(source, "calibration has no image size (pixel_image_width/height)");
+  if (opt.bayer != BayerPattern::None && (w % 2 || h % 2 || w < 4 || h < 4))
+    throw InputError(source, "Bayer image size " + std::to_string(w) + "x" + std::to_string(h) + " is not even");
+  const int sample_step = opt.bayer == BayerPattern::None ? 1 : 2;
+  auto g = computeRectifiedGrid(camera, field, opt.plane_height, sample_step);
+  if (!g)
+    throw InputError(source, "camera sees no part of the field at plane height " +
+                                 std::to_string(opt.plane_height) + " mm");
+  if (g->width < 8 || g->height < 8 || static_cast<double>(g->width) * g->height > 64e6)
+    throw InputError(source, "rectified grid " + std::to_string(g->width) + "x" + std::to_string(g->height) +
+                                 " is unusable");
+  return *g;
+}
+
+}  // namespace dv

@@ -1,0 +1,51 @@
+#pragma once
+// What the CPU reference and the OpenCL backend must agree on before any
+// pixel is touched: the blob constants in millimetres and the window sizes
+// they become on a camera's grid. One definition, so tuning cannot drift
+// between the backends.
+#include "geometry/camera_model.h"
+#include "geometry/field_model.h"
+#include "pipeline/pipeline_options.h"
+#include "pipeline/rectified_grid.h"
+
+namespace dv {
+
+// Largest blob radius (center blob, thesis §5.2.7.3).
+inline constexpr double kMaxBlobRadiusMm = 25;
+// Radius over which a blob's color is averaged: the side blob radius minus a
+// margin for blur and position error.
+inline constexpr double kColorRadiusMm = 13;
+// Smallest (max - min) / max of a blob's mean color: pattern colors and the
+// ball are 0.6..0.9, white lines with carpet around them 0.1..0.2.
+inline constexpr float kMinBlobSaturation = 0.25f;
+// Peaks closer than this belong to the same blob.
+inline constexpr double kMinBlobDistanceMm = 20;
+// Inner corner of each quadrant left out of the score: crossings of 10 mm
+// lines make the same checkerboard as a blob, but only near the center.
+inline constexpr double kInnerCornerMm = 10;
+// The reported score is the weakest quadrant's mean gradient dot product
+// divided by (mean gradient energy in the window + this floor). The ratio is
+// a shape measure: high for round blobs, low for lines, crossings and
+// corners, whose edges carry energy but little diagonal product. The floor
+// (in the brightness-normalised chroma units, so independent of exposure)
+// keeps faint texture from reaching high ratios.
+inline constexpr float kEnergyFloor = 0.01f;
+
+// Window sizes in grid cells for a grid of `scale` mm per cell.
+struct ScoreWindows {
+  double gradient_scale = 1;  // 1/3 * ceil(25 mm / scale) (thesis §5.2.7.4)
+  int quadrant_radius = 2;
+  double circle_radius = 2;
+  int inner_corner = 0;       // left out of each quadrant
+  int margin = 1;             // cells at the edge without a full score window
+  int energy_window = 2;      // half size of the gradient energy window
+  double color_radius = 1;
+};
+ScoreWindows scoreWindows(double scale, BlobScoreKind kind);
+
+// The grid of a camera for these options, with the checks both backends
+// make: an image size in the calibration, an even size for Bayer input, a
+// view of the field, a usable grid. Throws InputError naming the camera.
+RectifiedGrid checkedGrid(const CameraModel& camera, const FieldModel& field, const PipelineOptions& opt);
+
+}  // namespace dv
