@@ -300,15 +300,22 @@ struct Detector::Impl {
   // robot's center must look like this frame's yellow or blue rather than
   // like the field or a white line; the team colors come from clustering
   // the centers first, so no fixed hue is involved.
-  void dropImplausibleCenters() {
-    const int nr = static_cast<int>(robots.size());
-    if (nr == 0) return;
+  // Center blob colors of the robot hypotheses in two classes, yellow vs
+  // blue, with green and pink as the external colors (eq. 5.24); the labels
+  // are left in `labels`.
+  TwoMeansResult clusterCenters() {
     samples.clear();
     for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
     labels.resize(samples.size());
     const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
     const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
-    const auto res = twoMeans(samples.data(), nr, prior, ext, 2, labels.data());
+    return twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  }
+
+  void dropImplausibleCenters() {
+    const int nr = static_cast<int>(robots.size());
+    if (nr == 0) return;
+    const auto res = clusterCenters();
     int kept = 0;
     for (int i = 0; i < nr; ++i) {
       const ColorVec& c = samples[i];
@@ -344,13 +351,8 @@ struct Detector::Impl {
     if (nr == 0) return;
 
     // Teams: center blobs, yellow vs blue; green and pink are external.
-    samples.clear();
-    for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
-    labels.resize(samples.size());
     {
-      const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
-      const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
-      const auto res = twoMeans(samples.data(), nr, prior, ext, 2, labels.data());
+      const auto res = clusterCenters();
       for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
       learnClass(kYellow, kBlue, res);
     }
