@@ -155,6 +155,58 @@ TEST(SynthRender, MovingRobotTruthIsMidExposureAndMatchesTheBlurredBlob) {
   EXPECT_NEAR(c.v, t.pixel_y(), 0.3);
 }
 
+// A ball rolling into a wall bounces back with the restitution, a kick
+// turns it; truth is the mid-exposure position and the rendered ball is
+// there.
+TEST(SynthRender, BouncingAndKickedBallTruthMatchesTheRender) {
+  SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.0);
+  s.field.field_length = 1000;  // walls at x = +-600, y = +-500
+  s.field.field_width = 800;
+  s.field.boundary_width = 100;
+  s.field.boundary_width_goal_line = 100;
+  s.field.goal_width = 300;
+  s.field.generateMarkings();
+  s.materials.wall = {0, 100, 0};  // only the ball differs from the carpet
+  s.materials.goal = {0, 100, 0};
+  s.ball.present = true;
+  s.ball.position = {400, 0, 21.5};
+  s.ball.velocity = {3000, 0, 0};
+  s.ball.wall_restitution = 0.9;
+  s.ball.kicks = {{0.12, {0, 2000, 0}}};
+  s.fps = 60;
+  s.frames = 10;
+  const Renderer r(s);
+  // Hits the wall (center at 600 - 21.5) at t = 178.5 / 3000 s.
+  const double t_hit = 178.5 / 3000;
+  struct Want {
+    int frame;
+    double x, y;
+  };
+  const Want wants[] = {{3, 400 + 3000 * 0.05, 0},
+                        {6, 578.5 - 2700 * (0.1 - t_hit), 0},
+                        {9, 578.5 - 2700 * (0.12 - t_hit), 2000 * 0.03}};
+  const CameraModel cam(s.cameras[0].calib);
+  for (const Want& w : wants) {
+    SCOPED_TRACE(w.frame);
+    const RenderedFrame f = r.render(w.frame, 0);
+    ASSERT_EQ(f.truth.balls_size(), 1);
+    EXPECT_NEAR(f.truth.balls(0).x(), w.x, 1e-3);
+    EXPECT_NEAR(f.truth.balls(0).y(), w.y, 1e-3);
+    const auto want = cam.fieldToImage({w.x, w.y, 21.5});
+    ASSERT_TRUE(want);
+    const cv::Mat rad = r.renderRadiance(w.frame / s.fps, 0);
+    double sw = 0, su = 0, sv = 0;
+    for (int v = int(want->v) - 8; v <= int(want->v) + 8; ++v)
+      for (int u = int(want->u) - 8; u <= int(want->u) + 8; ++u) {
+        const cv::Vec3f p = rad.at<cv::Vec3f>(v, u);
+        const double cover = 1 - (p[1] - p[2]) / 100.0;
+        sw += cover, su += cover * u, sv += cover * v;
+      }
+    EXPECT_NEAR(su / sw, want->u, 0.3);
+    EXPECT_NEAR(sv / sw, want->v, 0.3);
+  }
+}
+
 TEST(SynthRender, BayerSitesFollowRGGB) {
   SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.0, 64, 48);
   // Everything pure red.

@@ -121,6 +121,72 @@ TEST(SynthScene, ImpossibleValuesAreRejected) {
             std::string::npos);
 }
 
+TEST(SynthScene, BallKicksAndRestitutionLoad) {
+  // kMinimal with its ball line replaced.
+  auto withBall = [](const std::string& ball) {
+    std::string text = kMinimal;
+    const std::string old = "ball: {position: [-200, 100]}";
+    return text.replace(text.find(old), old.size(), ball);
+  };
+  const SceneSpec s = loadScene(writeTemp(
+      "kicks.yaml", withBall("ball: {position: [0, 0], velocity: [1000, 0], wall_restitution: 0.5,\n"
+                             "       kicks: [{t: 0.1, velocity: [0, -2000]}, {t: 0.3, velocity: [5, 5, 1]}]}")));
+  EXPECT_DOUBLE_EQ(s.ball.wall_restitution, 0.5);
+  ASSERT_EQ(s.ball.kicks.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.ball.kicks[0].t, 0.1);
+  EXPECT_DOUBLE_EQ(s.ball.kicks[0].velocity.y, -2000);
+  EXPECT_DOUBLE_EQ(s.ball.kicks[1].velocity.z, 1);
+  const std::string order = loadError(
+      "kick_order.yaml", withBall("ball: {kicks: [{t: 0.3, velocity: [1, 0]}, {t: 0.2, velocity: [1, 0]}]}"));
+  EXPECT_NE(order.find("ball.kicks[1].t: kicks must be in increasing time"), std::string::npos)
+      << order;
+  const std::string restitution =
+      loadError("restitution.yaml", withBall("ball: {wall_restitution: 1.5}"));
+  EXPECT_NE(restitution.find("ball.wall_restitution: 1.5 is outside"), std::string::npos) << restitution;
+}
+
+// The motion preset's ball really moves at the speed it asks for: kicked near
+// 6.5 m/s, bouncing off the walls and away from robots, never leaving the
+// walls or touching a robot; robots move fast too.
+TEST(SynthScene, MotionPresetBallReachesItsSpeedAndStaysInTheField) {
+  const SceneSpec s = presetScene("motion_60fps_flicker");
+  ASSERT_TRUE(s.ball.present);
+  const FieldRect walls = s.field.withBoundary();
+  const double r = s.field.ball_radius;
+  const double duration = s.frames / s.fps, step = 0.0005;
+  double fastest = 0, nearest_robot = 1e9;
+  FieldPoint prev = ballPositionAt(s.ball, s.field, 0);
+  for (double t = step; t <= duration; t += step) {
+    const FieldPoint p = ballPositionAt(s.ball, s.field, t);
+    fastest = std::max(fastest, std::hypot(p.x - prev.x, p.y - prev.y) / step);
+    prev = p;
+    ASSERT_GE(p.x, walls.x_min + r - 1e-6) << "t " << t;
+    ASSERT_LE(p.x, walls.x_max - r + 1e-6) << "t " << t;
+    ASSERT_GE(p.y, walls.y_min + r - 1e-6) << "t " << t;
+    ASSERT_LE(p.y, walls.y_max - r + 1e-6) << "t " << t;
+    for (const SceneRobot& rb : s.robots) {
+      const FieldMm q = robotPositionAt(rb, t);
+      nearest_robot = std::min(nearest_robot, std::hypot(p.x - q.x, p.y - q.y));
+    }
+  }
+  EXPECT_GE(fastest, 6000);
+  EXPECT_LE(fastest, 6500 + 1e-6);
+  EXPECT_GE(nearest_robot, RobotPatternGeometry::kMaxRadius + r);
+  double fastest_robot = 0;
+  int moving = 0;
+  for (const SceneRobot& rb : s.robots) {
+    const double v = std::hypot(rb.velocity.x, rb.velocity.y);
+    fastest_robot = std::max(fastest_robot, v);
+    moving += v > 0;
+  }
+  EXPECT_GE(fastest_robot, 2500);
+  EXPECT_GE(moving, int(s.robots.size()) / 2);
+  // The same course for the same seed.
+  const SceneSpec again = presetScene("motion_60fps_flicker");
+  ASSERT_EQ(again.ball.kicks.size(), s.ball.kicks.size());
+  EXPECT_EQ(ballPositionAt(again.ball, again.field, 0.7).x, ballPositionAt(s.ball, s.field, 0.7).x);
+}
+
 TEST(SynthScene, MutatedScenesGiveInputErrorsNeverCrashes) {
   // Every single-character deletion or replacement of a valid scene either
   // loads or throws InputError; nothing else escapes.

@@ -335,6 +335,7 @@ struct Renderer::Impl {
     in.robots.assign(in.samples, {});
     in.ball.assign(in.samples, {});
     in.ball_present = spec.ball.present;
+    const bool ball_moves = ballMoves(spec.ball);
     for (int k = 0; k < in.samples; ++k) {
       const double t = in.samples == 1 ? t_mid : t_mid + tau * ((k + 0.5) / in.samples - 0.5);
       for (const SceneRobot& r : spec.robots) {
@@ -348,10 +349,8 @@ struct Renderer::Impl {
         p.moving = r.velocity.x != 0 || r.velocity.y != 0 || r.angular_velocity != 0;
         in.robots[k].push_back(p);
       }
-      const FieldPoint b = ballPositionAt(spec.ball, t);
-      in.ball[k] = {{b.x, b.y, b.z},
-                    spec.ball.velocity.x != 0 || spec.ball.velocity.y != 0 ||
-                        spec.ball.velocity.z != 0};
+      const FieldPoint b = ballPositionAt(spec.ball, spec.field, t);
+      in.ball[k] = {{b.x, b.y, b.z}, ball_moves};
     }
     const CameraRays& cr = rays[ci];
     const CameraModel& cam = models[ci];
@@ -659,7 +658,7 @@ dv::ssl::SSL_DetectionFrame Renderer::truth(int frame, size_t camera_index) cons
     d->set_height(float(r.height));
   }
   if (spec_.ball.present) {
-    const FieldPoint b = ballPositionAt(spec_.ball, t);
+    const FieldPoint b = ballPositionAt(spec_.ball, spec_.field, t);
     const auto px = cam.fieldToImage(b);
     if (inside(px)) {
       auto* d = f.add_balls();

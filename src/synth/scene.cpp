@@ -18,6 +18,7 @@ Eigen::Vector3d vec(const FieldPoint& p) { return {p.x, p.y, p.z}; }
 // Robots and the ball must stay this far inside the walls (robot radius plus
 // a little air).
 constexpr double kWallClearance = 110;
+constexpr double kRobotRadius = RobotPatternGeometry::kMaxRadius;  // body
 
 bool insideWalls(const FieldModel& f, FieldMm p, double clearance) {
   const FieldRect r = f.withBoundary();
@@ -74,9 +75,69 @@ double robotOrientationAt(const SceneRobot& r, double t) {
   return std::remainder(r.orientation + r.angular_velocity * t, 2 * kPi);
 }
 
-FieldPoint ballPositionAt(const SceneBall& b, double t) {
-  return {b.position.x + b.velocity.x * t, b.position.y + b.velocity.y * t,
-          b.position.z + b.velocity.z * t};
+namespace {
+
+// Rolls the ball for dt seconds inside the box lo..hi of its center,
+// reflecting the velocity component across each wall it meets.
+void roll(BallState& s, double dt, const double lo[2], const double hi[2], double restitution) {
+  double* p[2] = {&s.position.x, &s.position.y};
+  double* v[2] = {&s.velocity.x, &s.velocity.y};
+  // Bounded: a ball stuck in a corner with restitution near 1 cannot spin.
+  for (int bounce = 0; bounce < 1000 && dt > 0; ++bounce) {
+    double hit = dt;
+    int axis = -1;
+    for (int a = 0; a < 2; ++a) {
+      double th = dt;
+      // A ball already beyond a wall (placed outside) is not pulled back.
+      if (*v[a] > 0 && *p[a] <= hi[a])
+        th = (hi[a] - *p[a]) / *v[a];
+      else if (*v[a] < 0 && *p[a] >= lo[a])
+        th = (lo[a] - *p[a]) / *v[a];
+      if (th < hit) hit = th, axis = a;
+    }
+    s.position.x += s.velocity.x * hit;
+    s.position.y += s.velocity.y * hit;
+    s.position.z += s.velocity.z * hit;
+    dt -= hit;
+    if (axis < 0) break;
+    *v[axis] = -restitution * *v[axis];
+  }
+}
+
+}  // namespace
+
+BallState ballStateAt(const SceneBall& b, const FieldModel& field, double t) {
+  BallState s{b.position, b.velocity};
+  if (t <= 0) {
+    s.position = {b.position.x + b.velocity.x * t, b.position.y + b.velocity.y * t,
+                  b.position.z + b.velocity.z * t};
+    return s;
+  }
+  const FieldRect walls = field.withBoundary();
+  const double r = field.ball_radius;
+  const double lo[2] = {walls.x_min + r, walls.y_min + r};
+  const double hi[2] = {walls.x_max - r, walls.y_max - r};
+  double now = 0;
+  for (const BallKick& k : b.kicks) {
+    if (k.t > t) break;
+    roll(s, k.t - now, lo, hi, b.wall_restitution);
+    s.velocity = k.velocity;
+    now = k.t;
+  }
+  roll(s, t - now, lo, hi, b.wall_restitution);
+  return s;
+}
+
+FieldPoint ballPositionAt(const SceneBall& b, const FieldModel& field, double t) {
+  return ballStateAt(b, field, t).position;
+}
+
+bool ballMoves(const SceneBall& b) {
+  auto moving = [](const FieldPoint& v) { return v.x != 0 || v.y != 0 || v.z != 0; };
+  if (moving(b.velocity)) return true;
+  for (const BallKick& k : b.kicks)
+    if (moving(k.velocity)) return true;
+  return false;
 }
 
 std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_index, int yellow,
@@ -135,6 +196,60 @@ std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_
   return out;
 }
 
+namespace {
+
+// The ball kicked at t = 0, then again (away from the robot) each time it
+// would touch one. Returns false when no such course is found.
+bool kickBallAround(SceneSpec& scene, double max_speed, double duration, SplitMix64& rng) {
+  SceneBall& ball = scene.ball;
+  // Ball center to robot center at contact, plus a little air.
+  const double contact = kRobotRadius + scene.field.ball_radius + 20;
+  constexpr double kStep = 0.001;  // s, the ball moves at most 6.5 mm per step
+  constexpr int kMaxKicks = 40;
+  auto kick = [&](double lo, double hi, FieldMm dir, double spread) {
+    const double speed = rng.uniform(lo, hi) * max_speed, a = rng.uniform(-spread, spread);
+    const double c = std::cos(a), s = std::sin(a);
+    return FieldPoint{speed * (c * dir.x - s * dir.y), speed * (s * dir.x + c * dir.y), 0};
+  };
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    ball.kicks.clear();
+    ball.velocity = kick(0.95, 1.0, {1, 0}, kPi);
+    bool ok = true;
+    // The whole last exposure lies before `duration`.
+    for (int i = 0; ok && i * kStep <= duration; ++i) {
+      const double t = i * kStep;
+      const FieldMm p = ballPositionAt(ball, scene.field, t).xy();
+      for (const SceneRobot& r : scene.robots) {
+        const FieldMm q = robotPositionAt(r, t);
+        if (std::hypot(p.x - q.x, p.y - q.y) >= contact) continue;
+        // Kick one step before the touch, away from the robot.
+        const double tk = t - kStep;
+        if (tk <= 0 || (!ball.kicks.empty() && tk <= ball.kicks.back().t) ||
+            int(ball.kicks.size()) == kMaxKicks) {
+          ok = false;
+          break;
+        }
+        const FieldMm b = ballPositionAt(ball, scene.field, tk).xy(), c = robotPositionAt(r, tk);
+        const double d = std::hypot(b.x - c.x, b.y - c.y);
+        const FieldMm away{(b.x - c.x) / d, (b.y - c.y) / d};
+        FieldPoint v = kick(0.5, 1.0, away, kPi / 3);
+        // It must leave the robot faster than the robot follows it.
+        if ((v.x - r.velocity.x) * away.x + (v.y - r.velocity.y) * away.y < 0.25 * max_speed)
+          v = kick(0.5, 1.0, away, 0);
+        ball.kicks.push_back({tk, v});
+        i = int(std::lround(tk / kStep));  // continue from the kick
+        break;
+      }
+    }
+    if (ok) return true;
+  }
+  ball.velocity = {};
+  ball.kicks.clear();
+  return false;
+}
+
+}  // namespace
+
 void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_speed,
                         double ball_max_speed, double duration, uint64_t seed) {
   SplitMix64 rng(mixSeed(seed, 0x4D6F7665ull));
@@ -171,19 +286,7 @@ void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_s
                                     scene.robots[j].position, scene.robots[j].velocity,
                                     duration) < 200)
         scene.robots[std::max(i, j)].velocity = {};
-  if (!scene.ball.present) return;
-  const FieldMm b0 = scene.ball.position.xy();
-  scene.ball.velocity = {};
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    const FieldMm v = randomVelocity(ball_max_speed);
-    bool ok = endInside(b0, v, 50);
-    for (const SceneRobot& r : scene.robots)
-      ok = ok && closestApproach(b0, v, r.position, r.velocity, duration) >= 90 + 21.5 + 20;
-    if (ok) {
-      scene.ball.velocity = {v.x, v.y, 0};
-      break;
-    }
-  }
+  if (scene.ball.present) kickBallAround(scene, ball_max_speed, duration, rng);
 }
 
 void scaleImages(SceneSpec& scene, double factor) {

@@ -42,9 +42,20 @@ struct SceneRobot {
   double angular_velocity = 0;  // rad/s
 };
 
+// The ball's velocity from time `t` on: a kick, or a deflection off a robot.
+struct BallKick {
+  double t = 0;         // s
+  FieldPoint velocity;  // mm/s
+};
+
+// The ball rolls straight (no friction) between kicks and bounces off the
+// field walls (field.withBoundary()), keeping `wall_restitution` of its
+// speed toward the wall. Before t = 0 it rolls on its initial velocity.
 struct SceneBall {
   FieldPoint position{0, 0, 21.5};  // center, at t = 0; z = 21.5 resting
-  FieldPoint velocity;              // mm/s
+  FieldPoint velocity;              // mm/s, at t = 0
+  std::vector<BallKick> kicks;      // in time order, t > 0
+  double wall_restitution = 0.9;
   bool present = true;
 };
 
@@ -146,11 +157,13 @@ std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_
                                           double min_distance = 200, double margin_px = 40);
 
 // Gives every robot a random velocity (speed between max_speed / 4 and
-// max_speed mm/s, any direction) and angular velocity (up to max_angular_speed rad/s), and the
-// ball one likewise up to ball_max_speed, such that over `duration` seconds no two
-// robots come closer than 200 mm, the ball stays clear of the robots and all
-// stay inside the walls. Where no such motion is found, the object stands.
-// Deterministic for `seed`.
+// max_speed mm/s, any direction) and angular velocity (up to
+// max_angular_speed rad/s) such that over `duration` seconds no two robots
+// come closer than 200 mm and all stay inside the walls; where no such
+// motion is found, the robot stands. The ball is kicked at t = 0 with a
+// speed between 0.9 and 1 x ball_max_speed, bounces off the walls, and is
+// kicked again (0.5 to 1 x ball_max_speed, away from the robot) wherever it
+// would touch a robot. Deterministic for `seed`.
 void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_speed,
                         double ball_max_speed, double duration, uint64_t seed);
 
@@ -159,9 +172,18 @@ void assignRandomMotion(SceneSpec& scene, double max_speed, double max_angular_s
 // small in a test. The view stays the same.
 void scaleImages(SceneSpec& scene, double factor);
 
-// Position and orientation of a robot / the ball at time t (constant velocity).
+// Position and orientation of a robot at time t (constant velocity).
 FieldMm robotPositionAt(const SceneRobot& r, double t);
 double robotOrientationAt(const SceneRobot& r, double t);
-FieldPoint ballPositionAt(const SceneBall& b, double t);
+// The ball's center and velocity at time t, with its kicks and wall bounces
+// inside `field`'s walls.
+struct BallState {
+  FieldPoint position;
+  FieldPoint velocity;
+};
+BallState ballStateAt(const SceneBall& b, const FieldModel& field, double t);
+FieldPoint ballPositionAt(const SceneBall& b, const FieldModel& field, double t);
+// Whether the ball moves at any time (initial velocity or a kick).
+bool ballMoves(const SceneBall& b);
 
 }  // namespace dv

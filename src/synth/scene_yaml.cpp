@@ -265,7 +265,7 @@ SceneRobot readRobot(const SceneReader& r, const YAML::Node& n, size_t index) {
 }
 
 SceneBall readBall(const SceneReader& r, const YAML::Node& n, double radius) {
-  r.checkKeys(n, "ball", {"position", "velocity", "present"});
+  r.checkKeys(n, "ball", {"position", "velocity", "kicks", "wall_restitution", "present"});
   SceneBall b;
   b.position.z = radius;
   with(n, "position", [&](const YAML::Node& v) {
@@ -275,6 +275,26 @@ SceneBall readBall(const SceneReader& r, const YAML::Node& n, double radius) {
   with(n, "velocity", [&](const YAML::Node& v) {
     const auto p = r.numbers(v, "ball.velocity", 2, 3, -1e5, 1e5);
     b.velocity = {p[0], p[1], p.size() == 3 ? p[2] : 0};
+  });
+  with(n, "kicks", [&](const YAML::Node& list) {
+    if (!list.IsSequence()) r.fail(list, "ball.kicks: expected a list of {t, velocity}");
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string where = "ball.kicks[" + std::to_string(i) + "]";
+      const YAML::Node k = list[i];
+      r.checkKeys(k, where, {"t", "velocity"});
+      if (!k["t"].IsDefined() || !k["velocity"].IsDefined())
+        r.fail(k, where + ": needs 't' (s) and 'velocity' ([vx, vy(, vz)] mm/s)");
+      BallKick kick;
+      kick.t = r.number(k["t"], where + ".t", 1e-9, 1e6);
+      if (!b.kicks.empty() && kick.t <= b.kicks.back().t)
+        r.fail(k["t"], where + ".t: kicks must be in increasing time");
+      const auto v = r.numbers(k["velocity"], where + ".velocity", 2, 3, -1e5, 1e5);
+      kick.velocity = {v[0], v[1], v.size() == 3 ? v[2] : 0};
+      b.kicks.push_back(kick);
+    }
+  });
+  with(n, "wall_restitution", [&](const YAML::Node& v) {
+    b.wall_restitution = r.number(v, "ball.wall_restitution", 0, 1);
   });
   with(n, "present", [&](const YAML::Node& v) { b.present = r.boolean(v, "ball.present"); });
   return b;
