@@ -198,5 +198,39 @@ TEST(DetectionTracking, TrackedBallRanksAboveANewLookalike) {
   }
 }
 
+// A 6 m/s ball bouncing off the wall at x = 4800, then kicked back toward
+// the wall by a robot it passes, keeps its track: it ranks above an equally orange
+// lookalike that appears right after each event.
+TEST(DetectionTracking, BouncedAndKickedBallKeepsItsTrack) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  const double wall = 4800 - 21.5, t_bounce = (wall - 4200) / 6000.0;
+  auto rolling = [&](double t) {
+    return t < t_bounce ? FieldMm{4200 + 6000 * t, 0} : FieldMm{wall - 5400 * (t - t_bounce), 0};
+  };
+  const int kick_frame = 12;  // kicked halfway between frames 11 and 12
+  const FieldMm at_kick = rolling((kick_frame - 0.5) * kDt);
+  for (int f = 0; f < 16; ++f) {
+    const double t = f * kDt;
+    const FieldMm ball =
+        f < kick_frame ? rolling(t) : FieldMm{at_kick.x + 6000 * (t - (kick_frame - 0.5) * kDt), 0};
+    SceneBuilder s(cam, 500 + f);
+    s.addRobot({Team::Yellow, 1, {4300, 170}, 0});
+    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
+    s.addBall(ball);
+    if (f == 7) s.addBall({2500, 1800});  // from nowhere, just after the bounce
+    if (f == kick_frame) s.addBall({2500, -1800});
+    det.process(s.list, t, out);
+    ASSERT_GE(out.balls.size(), 1u) << "frame " << f;
+    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+    EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+    if (f == 7 || f == kick_frame) {
+      ASSERT_EQ(out.balls.size(), 2u) << "frame " << f;
+      EXPECT_LT(out.balls[1].confidence, out.balls[0].confidence) << "frame " << f;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dv

@@ -74,7 +74,8 @@ struct BallTrack {
   int hits = 0;
   bool confirmed = false;
   FieldMm predicted;
-  double gate = 0;
+  double gate = 0;       // around the prediction
+  double kick_gate = 0;  // around the last position, next to a robot
 };
 
 struct BallCandidate {
@@ -162,6 +163,20 @@ struct Detector::Impl {
     const double s = (cz - z1) / (cz - z0);
     out = {cam_pos.x() + s * (p.x - cam_pos.x()), cam_pos.y() + s * (p.y - cam_pos.y())};
     return true;
+  }
+
+  // A ball predicted at p from `from`, mirrored back at the walls (ball
+  // radius from them) its straight course would cross: a bounce.
+  FieldMm reflectAtWalls(FieldMm from, FieldMm p) const {
+    const double r = opt.ball_radius;
+    auto mirror = [](double v0, double v, double lo, double hi) {
+      if (hi <= lo || v0 < lo || v0 > hi) return v;  // not between the walls
+      if (v > hi) v = std::max(lo, 2 * hi - v);
+      if (v < lo) v = std::min(hi, 2 * lo - v);
+      return v;
+    };
+    return {mirror(from.x, p.x, ball_area.x_min + r, ball_area.x_max - r),
+            mirror(from.y, p.y, ball_area.y_min + r, ball_area.y_max - r)};
   }
 
   // ---------------------------------------------------------------- frame
@@ -660,18 +675,27 @@ struct Detector::Impl {
       std::nth_element(score_buf.begin(), mid, score_buf.end());
       strength_ref = *mid;
     }
-    // Ball predictions.
+    // Ball predictions: straight on from the last two frames, mirrored at
+    // the walls it would cross.
     for (auto& bt : ball_tracks) {
       bt.predicted = bt.pos[1];
       const double dt = std::max(0.0, t - bt.t[1]);
+      const double reach = opt.max_ball_speed * std::min(dt, 0.1);
       if (bt.history >= 2 && bt.t[1] > bt.t[0]) {
         const double f = dt / (bt.t[1] - bt.t[0]);
-        bt.predicted = {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
-                        bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)};
-        bt.gate = 30 + 0.5 * opt.max_ball_speed * std::min(dt, 0.1);
+        bt.predicted = reflectAtWalls(bt.pos[1], {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
+                                       bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)});
+        bt.gate = 30 + 0.5 * reach;
       } else {
-        bt.gate = 30 + opt.max_ball_speed * std::min(dt, 0.1);
+        bt.gate = 30 + reach;
       }
+      // Next to a robot the ball may have been kicked in any direction: the
+      // track also takes what it could reach from its last position.
+      bt.kick_gate = 0;
+      const double touch = RobotPatternGeometry::kMaxRadius + opt.ball_radius +
+                           (opt.max_ball_speed + opt.max_robot_speed) * std::min(dt, 0.1);
+      for (const auto& r : robots)
+        if (dist(bt.pos[1], r.pose.position) < touch) bt.kick_gate = 30 + reach;
       bt.confirmed = false;
     }
     const double keep_out = minBallOutsideDistance(opt.ball_radius);
@@ -722,8 +746,15 @@ struct Detector::Impl {
         temporal = 0.85;
         double best = std::numeric_limits<double>::max();
         for (size_t k = 0; k < ball_tracks.size(); ++k) {
-          const double d = dist(p, ball_tracks[k].predicted);
-          if (d < ball_tracks[k].gate && d < best) best = d, c.track = static_cast<int>(k);
+          const BallTrack& bt = ball_tracks[k];
+          double d = dist(p, bt.predicted);
+          if (d >= bt.gate) {
+            // Kicked: ranked behind any candidate on the predicted course.
+            const double from_last = dist(p, bt.pos[1]);
+            if (from_last >= bt.kick_gate) continue;
+            d = bt.gate + from_last;
+          }
+          if (d < best) best = d, c.track = static_cast<int>(k);
         }
         if (c.track >= 0) temporal = 1.0;
       }

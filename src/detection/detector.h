@@ -17,7 +17,9 @@
 //     several frames of agreeing contrary evidence;
 //  5. balls: blobs outside robots whose color is nearest to the learned
 //     orange class among all learned classes, ranked by color margin, blob
-//     strength and temporal consistency.
+//     strength and temporal consistency (a ball track predicts straight on,
+//     mirrored at the walls; next to a robot it also takes a kicked ball
+//     anywhere within max_ball_speed reach).
 #include <array>
 #include <memory>
 #include <vector>
