@@ -6,11 +6,17 @@ namespace dv {
 enum class ColorSpace { DRGB, YUV };
 enum class BayerPattern { None /* input is BGR 8UC3 */, RGGB, GRBG, GBRG, BGGR };
 enum class BlobScoreKind { QuadrantMin, CircleMin };
+// How a Bayer mosaic becomes color samples (see bayer_sampling.h):
+//   Subsample  one sample per 2x2 cell (thesis 5.2.3), a quarter of the pixels;
+//   Full       one sample per pixel (every 2x2 window, the same arithmetic);
+//   Auto       Full where the camera's 2x2 cells are coarse on the field.
+enum class BayerSampling { Auto, Subsample, Full };
 
 struct PipelineOptions {
   ColorSpace color = ColorSpace::DRGB;
   BlobScoreKind score = BlobScoreKind::QuadrantMin;
   BayerPattern bayer = BayerPattern::RGGB;
+  BayerSampling bayer_sampling = BayerSampling::Auto;
   double plane_height = 150;  // mm, rectification plane (max robot height)
   // Blob score threshold. Scores are ratios (weakest quadrant's mean gradient
   // dot product over the window's mean gradient energy plus a small floor, in
@@ -41,5 +47,8 @@ struct StageTimes {
 // Parses "rggb", "grbg", "gbrg", "bggr" or "none" (case-insensitive); false if unknown.
 bool parseBayerPattern(const char* text, BayerPattern& out);
 const char* bayerPatternName(BayerPattern p);
+// Parses "auto", "subsample" or "full" (case-insensitive); false if unknown.
+bool parseBayerSampling(const char* text, BayerSampling& out);
+const char* bayerSamplingName(BayerSampling s);
 
 }  // namespace dv
