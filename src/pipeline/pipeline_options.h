@@ -21,14 +21,15 @@ struct PipelineOptions {
   // Blob score threshold. Scores are ratios (weakest quadrant's mean gradient
   // dot product over the window's mean gradient energy plus a small floor, in
   // exposure-normalised chroma), so one value serves every exposure and light
-  // level; low-resolution cameras are resampled to a finer grid
-  // (kResampleAboveMm), so the windows are the same in mm at 1224 x 1024 and
-  // 2448 x 2048. Measured on the synthetic
+  // level; low-resolution cameras are sampled at every pixel (bayer_sampling)
+  // or resampled to a finer grid (kResampleAboveMm), so the windows are the
+  // same in mm at 1224 x 1024 and 2448 x 2048. Measured on the synthetic
   // scenes seen from above (normal, uneven light, dark and noisy, blue white
   // balance, gray carpet, motion blur): at 2448 x 2048 side blobs score
   // 0.3..1; at 1224 x 1024 (blurrier blobs) mostly 0.25..0.7, a few below;
   // carpet texture and noise mostly below 0.2 (0.2 lets dark, noisy carpet
-  // at 1224 x 1024 through). Line crossings can score like blobs;
+  // at 1224 x 1024 through; 0.21 with full sampling costs precision 0.97
+  // there). Line crossings can score like blobs;
   // near-neutral blobs are dropped by color (see cpu_pipeline.cpp).
   double threshold = 0.24;
   int max_blobs = 2000;
