@@ -11,7 +11,11 @@
 // height (11 mm per cell), or the far part of a tilted camera's view, where
 // cells are stretched along the viewing direction. Such cameras get full
 // sampling: a co-sited sample per pixel (bayer_full.h), four times the
-// samples for the first stage and none of the later stages' cost.
+// samples for the first stage, and the grid follows the finer samples.
+// Measured (CPU, 2 threads, loaded machine): 1224 x 1024 top-down 13 -> 18 ms
+// per frame, robot recall 0.977 -> 1.0; the side view 17 -> 50 ms (its grid
+// goes from 5.6 to 3.65 mm) for no change in recall (its far robots are
+// limited by the optics, not by the sampling).
 #include <string>
 
 #include "geometry/camera_model.h"
