@@ -12,10 +12,6 @@
 
 #define DV_LUMA_GROUP 256
 
-inline int dv_quarter_shift(int c, int nx, int ny, int nxy) {
-  return (9 * c + 3 * nx + 3 * ny + nxy + 8) >> 4;
-}
-
 inline uint dv_pack_chroma(int4 ka, int4 kb, int r, int g, int b) {
   const int a = (ka.x * r + ka.y * g + ka.z * b + 8) >> 4;
   const int c = (kb.x * r + kb.y * g + kb.z * b + 8) >> 4;
@@ -65,6 +61,33 @@ __kernel void bayer_chroma(__global const uchar* raw, int raw_stride, int ws, in
       __global const uchar* r1 = r0 + raw_stride;
       const int all = r0[0] + r0[1] + r1[0] + r1[1];
       const int rr = r_row[rc], bb = b_row[bc];
+      luma = (uint)(2 * (rr + bb) + (all - rr - bb));
+    }
+  }
+  dv_group_add(luma, scratch, results);
+}
+
+// Full Bayer sampling (pipeline/bayer_full.h): a sample per pixel, the 2x2
+// window at each pixel treated as a cell above. The brightness sum is the
+// subsampling's, over the 2x2 cells under the samples read: `cells` is that
+// region in cells (fullBayerCells), visited at its even pixels.
+__kernel void bayer_full_chroma(__global const uchar* raw, int raw_stride, int w, int h, int4 sites,
+                                int4 ka, int4 kb, int4 cells, __global uint* packed,
+                                volatile __global uint* results) {
+  __local uint scratch[DV_LUMA_GROUP];
+  const int x = get_global_id(0), y = get_global_id(1);
+  uint luma = 0;
+  if (x < w && y < h) {
+    const int3 c = dv_window_rgb(raw, raw_stride, w, h, sites, x, y);
+    packed[(size_t)y * w + x] = dv_pack_chroma(ka, kb, c.x, c.y, c.z);
+    const int i = x >> 1, j = y >> 1;
+    if (((x | y) & 1) == 0 && i >= cells.x && i < cells.y && j >= cells.z && j < cells.w &&
+        ((j - cells.z) & 15) == 0 && ((i - cells.x) & 3) == 0) {
+      __global const uchar* r0 = raw + (size_t)y * raw_stride + x;
+      __global const uchar* r1 = r0 + raw_stride;
+      const int all = r0[0] + r0[1] + r1[0] + r1[1];
+      const int rr = raw[(size_t)(y + sites.y) * raw_stride + x + sites.x];
+      const int bb = raw[(size_t)(y + sites.w) * raw_stride + x + sites.z];
       luma = (uint)(2 * (rr + bb) + (all - rr - bb));
     }
   }

@@ -5,7 +5,8 @@
 // the raw score to (mean gradient energy in the window + floor), kept above
 // `threshold`; then quadratic peak interpolation on the raw score and the
 // mean bilinear RGB over the disc of `color_radius` cells, read from the raw
-// frame (co-sited samples, as sampleRgbAt in pipeline/bayer_subsample.cpp). Peaks are appended to a
+// frame (co-sited samples, as sampleRgbAt in pipeline/bayer_subsample.cpp
+// or fullBayerRgbAt in pipeline/bayer_full.cpp). Peaks are appended to a
 // compact list (after the counters of the results buffer) through an
 // atomic counter; the host orders them by score.
 #pragma OPENCL FP_CONTRACT OFF
@@ -53,12 +54,13 @@ inline float dv_window_energy(__global const float2* chroma, int width, int k, f
   return (float)(sum / ((2 * r + 1) * (2 * r + 1)));
 }
 
-// Co-sited RGB of sample (i, j), clamped to the image: Bayer (bayer != 0,
-// sites rx, ry, bx, by) or BGR.
+// Co-sited RGB of sample (i, j), clamped to the image: BGR (bayer 0),
+// subsampled Bayer (1, sites rx, ry, bx, by) or full Bayer sampling (2).
 inline float3 dv_sample_rgb(__global const uchar* raw, int stride, int bayer, int4 sites, int ws,
                             int hs, int i, int j) {
   i = clamp(i, 0, ws - 1);
   j = clamp(j, 0, hs - 1);
+  if (bayer == 2) return convert_float3(dv_window_rgb(raw, stride, ws, hs, sites, i, j));
   if (!bayer) {
     __global const uchar* p = raw + (size_t)j * stride + 3 * i;
     return (float3)(p[2], p[1], p[0]);

@@ -85,6 +85,25 @@ class CliRun : public ::testing::Test {
   fs::path dir_;
 };
 
+// The built-in scene's camera is 1224 x 1024 with 11 mm of field per 2x2
+// Bayer cell, so auto samples every pixel; the choice is logged
+// once per camera and can be overridden.
+TEST_F(CliRun, BayerSamplingIsChosenLoggedAndOverridable) {
+  const std::string source = "run --source " + scene_dir_.string() + " --geometry " + scene("geometry.json") +
+                             " --camera-id 0 --no-publish --max-frames 2";
+  const CliResult a = cli(source);
+  ASSERT_EQ(a.code, 0) << a.out << a.err;
+  EXPECT_NE(a.out.find("camera 0: Bayer sampling full (auto: 2x2 cells cover"), std::string::npos) << a.out;
+  EXPECT_EQ(a.out.find("Bayer sampling", a.out.find("Bayer sampling") + 1), std::string::npos) << "logged twice";
+  const CliResult s = cli(source + " --bayer-sampling subsample");
+  ASSERT_EQ(s.code, 0) << s.out << s.err;
+  EXPECT_NE(s.out.find("Bayer sampling subsample (requested"), std::string::npos) << s.out;
+  EXPECT_NE(s.out.find("2 processed, 0 skipped"), std::string::npos) << s.out;
+  const CliResult bad = cli(source + " --bayer-sampling half");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--bayer-sampling 'half'"), std::string::npos) << bad.err;
+}
+
 TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
   // The directory `synth` wrote, as the README shows it.
   const CliResult r = cli("run --source " + scene_dir_.string() + " --geometry " + scene("geometry.json") +

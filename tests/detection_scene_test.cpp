@@ -181,7 +181,9 @@ TEST(DetectionScene, TopDownHalfFieldEachFrameAlone) {
 }
 
 // The same at 1224 x 1024 (same pose, half the focal length): the shipped
-// defaults must serve both resolutions.
+// defaults must serve both resolutions. This camera's 2x2 Bayer cells cover
+// 11 mm of field, so it is sampled at every pixel (bayer_sampling.h); with
+// 2x2 subsampling recall was 0.977 over the 12 placements of DV_SCENE_FULL=1.
 TEST(DetectionScene, TopDownHalfResolutionEachFrameAlone) {
   SceneScore s;
   const int placements = fullRun() ? 12 : 2;
@@ -194,13 +196,12 @@ TEST(DetectionScene, TopDownHalfResolutionEachFrameAlone) {
     score(spec, 1, true, s);
   }
   std::printf("%s\n", s.summary("top_down 1224x1024").c_str());
-  // Side blobs are blurrier at this resolution and some score near the
-  // threshold: these two placements find every robot, but over the 12 of
-  // DV_SCENE_FULL=1 recall is 0.977 (6 robots of 264 lose a side blob).
-  EXPECT_GE(s.recall(), fullRun() ? 0.97 : 0.99);
-  EXPECT_GE(s.precision(), 0.98);
-  EXPECT_GE(s.idAccuracy(), 0.98);
-  EXPECT_GE(s.ballRecall(), 0.97);
+  EXPECT_GE(s.recall(), 0.99);
+  EXPECT_GE(s.precision(), 0.99);
+  EXPECT_GE(s.idAccuracy(), 0.99);
+  EXPECT_LE(SceneScore::median(s.pos_err), 0.7);
+  EXPECT_GE(s.ballRecall(), 0.99);
+  EXPECT_LE(SceneScore::median(s.ball_err), 3.0);
 }
 
 class HarshScenes : public ::testing::TestWithParam<const char*> {};
@@ -223,12 +224,15 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   EXPECT_GE(s.ballPrecision(), 0.98);
   EXPECT_GE(s.detectableRecall(), 0.97);
   EXPECT_GE(s.detectableBallRecall(), 0.97);
-  // The overall bar. The side view does not reach it for robots: the far
-  // robots' side blobs cover only a few cells along the viewing direction
-  // and score below the threshold (recall 0.73 over the 6 placements of
-  // DV_SCENE_FULL=1, every robot whose blobs reached the detector found).
-  // Its stretched ball is found since its grid is resampled to 5.6 mm
-  // (kResampleAboveMm) and the threshold went to 0.24 (6 of 6 placements).
+  // The overall bar. The side view does not reach it for robots (recall
+  // 0.72 over the 6 placements of DV_SCENE_FULL=1, every robot whose blobs
+  // reached the detector found). Its mosaic is sampled at every pixel
+  // (bayer_sampling.h), which did not change recall (0.73 with 2x2
+  // subsampling; 0.72..0.73 on 3.65, 4.5 and 5.6 mm grids): the robots
+  // lost are either partly hidden behind a nearer robot (no blob at any
+  // threshold) or beyond ~3.7 m, where a side blob is 3-4 pixels tall, less
+  // than two periods of the red and blue sites, and lens blur stretches it
+  // along the viewing direction into an ellipse the round score windows miss.
   const bool side = std::string(GetParam()) == "side_view";
   EXPECT_GE(s.recall(), side ? 0.7 : 0.97);
   EXPECT_GE(s.ballRecall(), 0.97);
@@ -257,10 +261,13 @@ TEST_P(HarshScenesHalfResolution, RobotsAndBallWithTheSameDefaults) {
   std::printf("%s\n", s.summary(std::string(GetParam()) + " 1224x1024").c_str());
   // Dark and noisy at this resolution is the one bar not reached: its side
   // blobs are both blurred and noisy and score around the threshold, and a
-  // lower threshold lets noise blobs through (0.2: precision 0.65).
-  // Measured 0.82 over the 6 placements of DV_SCENE_FULL=1.
+  // lower threshold lets noise blobs through (0.21: recall 0.96, precision
+  // 0.97). Measured 0.90 over the 6 placements of DV_SCENE_FULL=1 with the
+  // mosaic sampled at every pixel (0.82 with 2x2 subsampling): the renderer's
+  // noise is per pixel, so at half the resolution each millimetre of field
+  // holds a quarter of the samples, and twice the noise, of 2448 x 2048.
   const bool dark = std::string(GetParam()) == "dark_noisy";
-  EXPECT_GE(s.recall(), dark ? 0.8 : 0.97);
+  EXPECT_GE(s.recall(), dark ? 0.85 : 0.97);
   EXPECT_GE(s.precision(), 0.98);
   EXPECT_GE(s.ballRecall(), 0.97);
   EXPECT_GE(s.ballPrecision(), 0.98);

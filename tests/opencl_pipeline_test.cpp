@@ -13,6 +13,8 @@
 #include "core/error.h"
 #include "detection/detector.h"
 #include "pipeline/backend.h"
+#include "pipeline/bayer_full.h"
+#include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/cpu_pipeline.h"
 #include "pipeline/kernels.h"
@@ -162,7 +164,7 @@ TEST(OpenClStages, EveryStageMatchesTheCpuFunction) {
   const int ws = raw.cols / 2, hs = raw.rows / 2;
   ThreadPool pool(1);
   RemapTable table;
-  table.build(cam, cpu.grid(), opt.plane_height, 2, pool);
+  table.build(cam, cpu.grid(), opt.plane_height, SampleLattice{2, 0.5}, pool);
   EXPECT_TRUE(table.index == cfg.remap_index && table.frac == cfg.remap_frac);
   EXPECT_EQ(cfg.region_x_begin, table.x_begin);
   EXPECT_EQ(cfg.region_y_end, table.y_end);
@@ -238,6 +240,61 @@ TEST(OpenClStages, EveryStageMatchesTheCpuFunction) {
   expectSameBlobs(cpu_blobs, ocl_blobs, "robot scene");
 }
 
+// Full Bayer sampling: the first stage (packed chroma and frame brightness)
+// exactly as the CPU function, on a camera whose 2x2 cells are coarse enough
+// that auto picks it; the rest of the pipeline is shared with subsampling.
+TEST(OpenClStages, FullBayerSamplingMatchesTheCpuFunction) {
+  DV_REQUIRE_OPENCL();
+  const auto cam = topDownCamera(1000, 500, 150 + 5000, 1000, 640, 480);
+  const auto field = FieldModel::divisionB();
+  PaintedScene scene = robotScene();
+  scene.noise_sigma = 2;
+  const cv::Mat raw = scene.render(cam, BayerPattern::GRBG);
+  PipelineOptions opt;
+  opt.bayer = BayerPattern::GRBG;
+  CpuPipeline cpu(cam, field, opt);
+  OpenClPipeline ocl(cam, field, opt, *testDevice());
+  ASSERT_EQ(cpu.options().bayer_sampling, BayerSampling::Full) << cpu.samplingNote();
+  ASSERT_EQ(ocl.options().bayer_sampling, BayerSampling::Full);
+  EXPECT_EQ(cpu.samplingNote(), ocl.samplingNote());
+  BlobList cpu_blobs, ocl_blobs;
+  ASSERT_TRUE(cpu.process(raw, cpu_blobs)) << cpu.lastError();
+  ASSERT_TRUE(ocl.process(raw, ocl_blobs)) << ocl.lastError();
+  const auto& e = ocl.engine();
+  const auto& cfg = e.config();
+  EXPECT_TRUE(cfg.full_bayer);
+  ThreadPool pool(1);
+  RemapTable table;
+  table.build(cam, cpu.grid(), opt.plane_height, sampleLattice(cpu.options()), pool);
+  EXPECT_EQ(table.src_width, raw.cols);
+  EXPECT_TRUE(table.index == cfg.remap_index && table.frac == cfg.remap_frac);
+  ChromaFixed fixed{};
+  for (int i = 0; i < 3; ++i) fixed.a[i] = cfg.chroma_a[i], fixed.b[i] = cfg.chroma_b[i];
+  std::vector<uint32_t> packed(static_cast<size_t>(raw.cols) * raw.rows, 0);
+  fullBayerChromaRows(raw, opt.bayer, fixed, packed.data(), table.y_begin, table.y_end, table.x_begin,
+                      table.x_end);
+  const auto opacked = e.readPackedChroma();
+  long diff = 0;
+  for (int y = table.y_begin; y < table.y_end; ++y)
+    for (int x = table.x_begin; x < table.x_end; ++x)
+      diff += opacked[static_cast<size_t>(y) * raw.cols + x] != packed[static_cast<size_t>(y) * raw.cols + x];
+  EXPECT_EQ(diff, 0) << "full Bayer sampling / packed chroma differs";
+  // Brightness over the 2x2 cells under the samples read.
+  const SampleRegion cells = fullBayerCells({table.x_begin, table.x_end, table.y_begin, table.y_end});
+  const auto s = bayerSites(opt.bayer);
+  uint64_t sum = 0, n = 0;
+  for (int y = cells.y_begin; y < cells.y_end; y += 16)
+    for (int x = cells.x_begin; x < cells.x_end; x += 4) {
+      const int all = raw.at<uint8_t>(2 * y, 2 * x) + raw.at<uint8_t>(2 * y, 2 * x + 1) +
+                      raw.at<uint8_t>(2 * y + 1, 2 * x) + raw.at<uint8_t>(2 * y + 1, 2 * x + 1);
+      const int r = raw.at<uint8_t>(2 * y + s.ry, 2 * x + s.rx), b = raw.at<uint8_t>(2 * y + s.by, 2 * x + s.bx);
+      sum += 2 * (r + b) + (all - r - b), n += 6;
+    }
+  EXPECT_EQ(e.lastLumaMean(), static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f);
+  EXPECT_GE(cpu_blobs.blobs.size(), 9u);  // 5 mm pixels: most of the 11 blobs
+  expectSameBlobs(cpu_blobs, ocl_blobs, "full Bayer sampling");
+}
+
 struct FrameCase {
   const char* name;
   BayerPattern bayer;
@@ -245,6 +302,7 @@ struct FrameCase {
   BlobScoreKind score;
   double gain;
   double noise;
+  BayerSampling sampling = BayerSampling::Auto;
 };
 
 class OpenClFrames : public ::testing::TestWithParam<FrameCase> {};
@@ -262,6 +320,7 @@ TEST_P(OpenClFrames, BlobsMatchTheCpuReference) {
   opt.bayer = p.bayer;
   opt.color = p.color;
   opt.score = p.score;
+  opt.bayer_sampling = p.sampling;
   CpuPipeline cpu(cam, field, opt);
   OpenClPipeline ocl(cam, field, opt, *testDevice());
   for (int frame = 0; frame < 2; ++frame) {  // buffers are reused: a second frame must agree too
@@ -279,7 +338,9 @@ INSTANTIATE_TEST_SUITE_P(
                       FrameCase{"bggr_yuv_quadrant_dark", BayerPattern::BGGR, ColorSpace::YUV, BlobScoreKind::QuadrantMin, 0.4, 1},
                       FrameCase{"grbg_drgb_circle", BayerPattern::GRBG, ColorSpace::DRGB, BlobScoreKind::CircleMin, 1, 1},
                       FrameCase{"bgr_drgb_quadrant", BayerPattern::None, ColorSpace::DRGB, BlobScoreKind::QuadrantMin, 1, 1},
-                      FrameCase{"bgr_yuv_circle", BayerPattern::None, ColorSpace::YUV, BlobScoreKind::CircleMin, 1.2, 0}),
+                      FrameCase{"bgr_yuv_circle", BayerPattern::None, ColorSpace::YUV, BlobScoreKind::CircleMin, 1.2, 0},
+                      FrameCase{"rggb_full_drgb_quadrant", BayerPattern::RGGB, ColorSpace::DRGB, BlobScoreKind::QuadrantMin, 1, 1.5, BayerSampling::Full},
+                      FrameCase{"gbrg_full_yuv_circle_dark", BayerPattern::GBRG, ColorSpace::YUV, BlobScoreKind::CircleMin, 0.5, 1, BayerSampling::Full}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // A rendered scene (ray-cast renderer, carpet texture, lighting, noise, lens

@@ -10,7 +10,9 @@
 // pinned memory to the sorted peak list on the host), median and p99.
 //
 //   dotvision_ocl_bench [--platform P] [--device D] [--frames N]
-//                       [--width W] [--height H] [--list] [--dump]
+//                       [--width W] [--height H] [--full-bayer] [--list] [--dump]
+// --full-bayer: a sample per pixel (pipeline/bayer_full.h) instead of per
+// 2x2 cell; the view then spans four times the grid cells.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -84,10 +86,11 @@ void drawFrame(uint8_t* raw, int w, int h, const std::vector<Disc>& discs) {
   }
 }
 
-// Tables for a view of the subsampled image rotated by 2 degrees and scaled
+// Tables for a view of the sample image rotated by 2 degrees and scaled
 // by 1.03, as the CPU reference's RemapTable stores them (1/256 fractions).
 void buildTables(dv::OclEngineConfig& c) {
-  const int sw = c.image_width / 2, sh = c.image_height / 2;
+  const int step = c.full_bayer ? 1 : 2;
+  const int sw = c.image_width / step, sh = c.image_height / step;
   const double s = 1.03, a = 2 * 3.14159265358979 / 180, ca = std::cos(a) * s, sa = std::sin(a) * s;
   c.grid_width = static_cast<int>(sw / s * 0.96);
   c.grid_height = static_cast<int>(sh / s * 0.96);
@@ -136,7 +139,7 @@ double percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
   dv::OclDeviceRequest req;
   int frames = 500, width = 2448, height = 2048;
-  bool list = false, dump = false;
+  bool list = false, dump = false, full_bayer = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -152,6 +155,7 @@ int main(int argc, char** argv) {
     else if (a == "--width") width = std::atoi(next().c_str());
     else if (a == "--height") height = std::atoi(next().c_str());
     else if (a == "--list") list = true;
+    else if (a == "--full-bayer") full_bayer = true;
     else if (a == "--dump") dump = true;
     else {
       std::fprintf(stderr, "dotvision_ocl_bench: unknown option %s\n", a.c_str());
@@ -190,6 +194,7 @@ int main(int argc, char** argv) {
     cfg.image_width = width;
     cfg.image_height = height;
     cfg.bayer = true;
+    cfg.full_bayer = full_bayer;
     // dRGB as the CPU reference (1.5 x an orthonormal basis normal to gray),
     // coefficients in 1/1024.
     const float s2 = 1.5f / std::sqrt(2.0f), s6 = 1.5f / std::sqrt(6.0f);

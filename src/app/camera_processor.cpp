@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "core/error.h"
+
 namespace dv::app {
 
 namespace {
@@ -20,6 +22,13 @@ BayerPattern bayerPatternOf(PixelFormat format) {
     case PixelFormat::BayerBggr8: return BayerPattern::BGGR;
   }
   return BayerPattern::RGGB;
+}
+
+BayerSampling bayerSamplingFromName(const std::string& text) {
+  BayerSampling s = BayerSampling::Auto;
+  if (!parseBayerSampling(text.c_str(), s))
+    throw InputError("command line", "unknown --bayer-sampling '" + text + "' (expected auto, subsample or full)");
+  return s;
 }
 
 CameraProcessor::CameraProcessor(const CameraCalibration& calibration, const FieldModel& field,

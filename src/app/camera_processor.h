@@ -21,6 +21,8 @@ struct ProcessorOptions {
 
 // The pipeline's Bayer setting for a frame source's pixel format.
 BayerPattern bayerPatternOf(PixelFormat format);
+// --bayer-sampling auto|subsample|full; InputError naming the option otherwise.
+BayerSampling bayerSamplingFromName(const std::string& text);
 
 class CameraProcessor {
  public:

@@ -30,6 +30,7 @@ struct BenchArgs {
   std::string geometry;
   std::optional<uint32_t> camera_id;
   std::string bayer = "rggb";
+  std::string bayer_sampling = "auto";
   int iterations = 100;
   int warmup = 5;
   int max_source_frames = 20;
@@ -76,6 +77,8 @@ CommandFn addBenchCommand(CLI::App& root) {
   cmd->add_option("--geometry", a->geometry, "SSL_GeometryData as canonical JSON (with --source)");
   cmd->add_option("--camera-id", a->camera_id, "camera id whose calibration is used");
   cmd->add_option("--bayer", a->bayer, "Bayer layout of single-channel images")->default_str("rggb");
+  cmd->add_option("--bayer-sampling", a->bayer_sampling, "Bayer mosaic sampling: auto|subsample|full")
+      ->default_str("auto");
   cmd->add_option("--iterations", a->iterations, "timed frames (default 100)")->check(CLI::PositiveNumber);
   cmd->add_option("--warmup", a->warmup, "untimed frames first (default 5)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-source-frames", a->max_source_frames,
@@ -97,6 +100,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       throw InputError("command line", "unknown --backend '" + a->backend + "' (expected cpu, opencl or auto)");
     options.backend.opencl_platform = a->opencl_platform;
     options.backend.opencl_device = a->opencl_device;
+    options.pipeline.bayer_sampling = bayerSamplingFromName(a->bayer_sampling);
     // Frames to cycle through, all of one camera.
     std::vector<Frame> frames;
     CameraCalibration calibration;
@@ -189,6 +193,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       j["image_height"] = calibration.image_height;
       j["grid_width"] = processor.pipeline().grid().width;
       j["grid_height"] = processor.pipeline().grid().height;
+      j["bayer_sampling"] = processor.pipeline().samplingNote();
       j["iterations"] = a->iterations;
       j["threads"] = threads;
       for (const auto& s : series)
@@ -205,6 +210,7 @@ CommandFn addBenchCommand(CLI::App& root) {
                   processor.pipeline().grid().width, processor.pipeline().grid().height,
                   processor.pipeline().name().c_str(),
                   threads, a->iterations);
+      std::printf("  %s\n", processor.pipeline().samplingNote().c_str());
       std::printf("  %-10s %10s %10s\n", "stage", "median ms", "p99 ms");
       for (const auto& s : series)
         std::printf("  %-10s %10.3f %10.3f\n", s.name, percentile(s.ms, 0.5), percentile(s.ms, 0.99));

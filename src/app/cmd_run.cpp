@@ -41,6 +41,7 @@ struct RunArgs {
   std::optional<uint32_t> camera_id;
   std::string scene;
   std::string bayer = "rggb";
+  std::string bayer_sampling = "auto";
   double fps = 60;
   std::string record;
   std::string jsonl;
@@ -184,6 +185,7 @@ ProcessorOptions processorOptions(const RunArgs& a) {
     throw InputError("command line", "unknown --backend '" + a.backend + "' (expected cpu, opencl or auto)");
   o.backend.opencl_platform = a.opencl_platform;
   o.backend.opencl_device = a.opencl_device;
+  o.pipeline.bayer_sampling = bayerSamplingFromName(a.bayer_sampling);
   return o;
 }
 
@@ -204,6 +206,9 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
     ProcessorOptions o = s.options;
     o.pipeline.bayer = bayerPatternOf(frame.format);
     ch.processor.emplace(c, s.field, o);
+    std::printf("dotvision run: camera %u: %s\n", ch.calibration.camera_id,
+                ch.processor->pipeline().samplingNote().c_str());
+    std::fflush(stdout);
     const size_t expect = static_cast<size_t>(s.args.max_frames > 0 ? s.args.max_frames : 4096);
     ch.pipeline_ms.reserve(expect);
     ch.detection_ms.reserve(expect);
@@ -437,6 +442,10 @@ CommandFn addRunCommand(CLI::App& root) {
                   "without --source: a scene YAML file or preset name instead of the built-in scene");
   cmd->add_option("--bayer", a->bayer, "Bayer layout of single-channel images: rggb|grbg|gbrg|bggr")
       ->default_str("rggb");
+  cmd->add_option("--bayer-sampling", a->bayer_sampling,
+                  "Bayer mosaic sampling: auto|subsample|full (auto: a sample per pixel where 2x2 cells "
+                  "are coarse on the field, else one per 2x2 cell)")
+      ->default_str("auto");
   cmd->add_option("--fps", a->fps, "frame rate for image sequence timestamps (index / fps)")
       ->default_str("60")
       ->check(CLI::PositiveNumber);

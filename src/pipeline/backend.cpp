@@ -19,6 +19,7 @@ class CpuPixelPipeline final : public PixelPipeline {
   const RectifiedGrid& grid() const override { return cpu_.grid(); }
   const StageTimes& times() const override { return cpu_.times(); }
   const PipelineOptions& options() const override { return cpu_.options(); }
+  const std::string& samplingNote() const override { return cpu_.samplingNote(); }
   std::optional<ImagePx> gridToImage(GridPx g) const override { return cpu_.gridToImage(g); }
   std::string name() const override { return "cpu"; }
 

@@ -37,7 +37,10 @@ class PixelPipeline {
   virtual const StageTimes& times() const = 0;
   // Host -> device transfer of the last frame, ms (0 for the CPU backend).
   virtual double uploadMs() const { return 0; }
+  // Options as used: bayer_sampling resolved for this camera (never Auto).
   virtual const PipelineOptions& options() const = 0;
+  // How the mosaic is sampled and why, one line for the log (bayer_sampling.h).
+  virtual const std::string& samplingNote() const = 0;
   virtual std::optional<ImagePx> gridToImage(GridPx g) const = 0;
   // "cpu" or "opencl <device name>".
   virtual std::string name() const = 0;

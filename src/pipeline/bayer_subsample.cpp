@@ -17,11 +17,6 @@ BayerSites bayerSites(BayerPattern pattern) {
 
 namespace {
 
-// Bilinear weights 9:3:3:1 (/16) move a sample a quarter cell in x and y.
-inline uint8_t quarterShift(int c, int nx, int ny, int nxy) {
-  return static_cast<uint8_t>((9 * c + 3 * nx + 3 * ny + nxy + 8) >> 4);
-}
-
 // One output row for the sites given at compile time, so the inner loop has
 // constant offsets the compiler can vectorise.
 template <int RX, int RY, int BX, int BY>
@@ -37,9 +32,9 @@ __attribute__((target_clones("avx2", "default"))) void subsampleRow(
   auto pixel = [&](int i, int rn, int bn) {
     const int rc = 2 * i + RX, bc = 2 * i + BX;
     uint8_t* o = out + 4 * i;
-    o[0] = quarterShift(r_row[rc], r_row[rn], r_nrow[rc], r_nrow[rn]);
+    o[0] = static_cast<uint8_t>(quarterShift(r_row[rc], r_row[rn], r_nrow[rc], r_nrow[rn]));
     o[1] = static_cast<uint8_t>((g_row0[2 * i + g0x] + g_row1[2 * i + g1x] + 1) >> 1);
-    o[2] = quarterShift(b_row[bc], b_row[bn], b_nrow[bc], b_nrow[bn]);
+    o[2] = static_cast<uint8_t>(quarterShift(b_row[bc], b_row[bn], b_nrow[bc], b_nrow[bn]));
     o[3] = 0;
   };
   // Borders: the neighbour across the image edge is the sample itself.
@@ -60,12 +55,6 @@ __attribute__((target_clones("avx2", "default"))) void subsampleRow(
     const uint32_t b = (9u * b_row[bc] + 3u * b_row[bc + bs] + 3u * b_nrow[bc] + b_nrow[bc + bs] + 8u) >> 4;
     o32[i] = r | (g << 8) | (b << 16);
   }
-}
-
-inline uint32_t packChroma(const ChromaFixed& k, int r, int g, int b) {
-  const int a = (k.a[0] * r + k.a[1] * g + k.a[2] * b + 8) >> 4;
-  const int c = (k.b[0] * r + k.b[1] * g + k.b[2] * b + 8) >> 4;
-  return (static_cast<uint32_t>(a) & 0xffffu) | (static_cast<uint32_t>(c) << 16);
 }
 
 template <int RX, int RY, int BX, int BY>

@@ -37,6 +37,17 @@ void bgrChromaRows(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, i
                    int row_end, int col_begin, int col_end);
 constexpr float kPackedChromaScale = 64.0f;
 
+// Bilinear weights 9:3:3:1 (/16) move a sample a quarter cell (half a pixel)
+// in x and y toward its neighbours nx, ny, nxy.
+inline int quarterShift(int c, int nx, int ny, int nxy) { return (9 * c + 3 * nx + 3 * ny + nxy + 8) >> 4; }
+
+// One sample's two chroma values (see bayerChromaRows), packed.
+inline uint32_t packChroma(const ChromaFixed& k, int r, int g, int b) {
+  const int a = (k.a[0] * r + k.a[1] * g + k.a[2] * b + 8) >> 4;
+  const int c = (k.b[0] * r + k.b[1] * g + k.b[2] * b + 8) >> 4;
+  return (static_cast<uint32_t>(a) & 0xffffu) | (static_cast<uint32_t>(c) << 16);
+}
+
 // Co-sited RGB of one sample (i, j) (clamped to the image), for the few places
 // that need color after the frame: blob colors and inspection views.
 // raw: the Bayer mosaic (pattern != None) or the BGR image.

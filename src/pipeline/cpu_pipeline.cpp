@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "pipeline/bayer_full.h"
+#include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/kernels.h"
 #include "pipeline/peak_select.h"
@@ -38,6 +40,8 @@ struct CpuPipeline::Impl {
   RemapTable table;
   ChromaTransform chroma;
   int sample_step = 2;   // full pixels per RGBX sample
+  bool full_bayer = false;  // a sample per pixel of the mosaic (bayer_full.h)
+  std::string sampling_note;
   int image_w = 0, image_h = 0;
   double gradient_scale = 1;  // cells
   int quadrant_r = 1;         // cells
@@ -67,7 +71,12 @@ struct CpuPipeline::Impl {
     const auto& c = camera.calibration();
     image_w = static_cast<int>(c.image_width);
     image_h = static_cast<int>(c.image_height);
-    sample_step = opt.bayer == BayerPattern::None ? 1 : 2;
+    const BayerSamplingChoice sampling = chooseBayerSampling(camera, field, opt);
+    opt.bayer_sampling = sampling.mode;
+    sampling_note = sampling.describe();
+    full_bayer = opt.bayer != BayerPattern::None && sampling.mode == BayerSampling::Full;
+    const SampleLattice lattice = sampleLattice(opt);
+    sample_step = lattice.step;
     grid = checkedGrid(camera, field, opt);
     chroma = ChromaTransform::of(opt.color);
     const ScoreWindows w = scoreWindows(grid.scale, opt.score);
@@ -78,7 +87,7 @@ struct CpuPipeline::Impl {
     margin = w.margin;
     color_radius = w.color_radius;
 
-    table.build(camera, grid, opt.plane_height, sample_step, pool);
+    table.build(camera, grid, opt.plane_height, lattice, pool);
 
     const size_t cells = static_cast<size_t>(grid.width) * grid.height;
     packed.assign(static_cast<size_t>(table.src_width) * table.src_height, 0);
@@ -148,7 +157,7 @@ struct CpuPipeline::Impl {
     out.plane_height = opt.plane_height;
     if (!checkFrame(raw)) return false;
     const bool bayer = raw.channels() == 1;
-    if (bayer != (sample_step == 2)) {
+    if (bayer != (opt.bayer != BayerPattern::None)) {
       // A BGR frame for a Bayer-configured camera: the sample grid differs.
       error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
       return false;
@@ -160,7 +169,11 @@ struct CpuPipeline::Impl {
     // Only the part of the image the grid reads.
     const int rows = table.y_end - table.y_begin;
     const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
-    if (bayer) {
+    if (full_bayer) {
+      pool.parallelFor(rows, [&](int b, int e) {
+        fullBayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+      });
+    } else if (bayer) {
       pool.parallelFor(rows, [&](int b, int e) {
         bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
       });
@@ -176,7 +189,10 @@ struct CpuPipeline::Impl {
     t0 = std::chrono::steady_clock::now();
     {
       uint64_t sum = 0, n = 0;
-      for (int y = table.y_begin; y < table.y_end; y += 16) {
+      // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
+      const SampleRegion read{table.x_begin, table.x_end, table.y_begin, table.y_end};
+      const SampleRegion cells = full_bayer ? fullBayerCells(read) : read;
+      for (int y = cells.y_begin; y < cells.y_end; y += 16) {
         if (bayer) {
           // R + B + mean of the two greens, per 2x2 cell.
           const auto s = bayerSites(opt.bayer);
@@ -184,7 +200,7 @@ struct CpuPipeline::Impl {
           const uint8_t* r1 = raw.ptr<uint8_t>(2 * y + 1);
           const uint8_t* rr = s.ry ? r1 : r0;
           const uint8_t* br = s.by ? r1 : r0;
-          for (int x = table.x_begin; x < table.x_end; x += 4) {
+          for (int x = cells.x_begin; x < cells.x_end; x += 4) {
             const int all = r0[2 * x] + r0[2 * x + 1] + r1[2 * x] + r1[2 * x + 1];
             const int r = rr[2 * x + s.rx], b = br[2 * x + s.bx];
             sum += 2 * (r + b) + (all - r - b);
@@ -297,12 +313,11 @@ struct CpuPipeline::Impl {
     const int i = table.index[k];
     const int sx = i % table.src_width, sy = i / table.src_width;
     const float fx = (table.frac[k] & 255) / 256.0f, fy = (table.frac[k] >> 8) / 256.0f;
-    const BayerPattern pattern = sample_step == 2 ? opt.bayer : BayerPattern::None;
     float p[4][3];
-    sampleRgbAt(last_raw, pattern, sx, sy, p[0]);
-    sampleRgbAt(last_raw, pattern, sx + 1, sy, p[1]);
-    sampleRgbAt(last_raw, pattern, sx, sy + 1, p[2]);
-    sampleRgbAt(last_raw, pattern, sx + 1, sy + 1, p[3]);
+    for (int n = 0; n < 4; ++n) {
+      if (full_bayer) fullBayerRgbAt(last_raw, opt.bayer, sx + (n & 1), sy + (n >> 1), p[n]);
+      else sampleRgbAt(last_raw, opt.bayer, sx + (n & 1), sy + (n >> 1), p[n]);
+    }
     const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
     for (int c = 0; c < 3; ++c) rgb[c] = w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c];
   }
@@ -337,6 +352,7 @@ CpuPipeline& CpuPipeline::operator=(CpuPipeline&&) noexcept = default;
 
 bool CpuPipeline::process(const cv::Mat& raw, BlobList& out) { return impl_->process(raw, out); }
 const std::string& CpuPipeline::lastError() const { return impl_->error; }
+const std::string& CpuPipeline::samplingNote() const { return impl_->sampling_note; }
 const float* CpuPipeline::scoreData() const { return impl_->score.data(); }
 const RectifiedGrid& CpuPipeline::grid() const { return impl_->grid; }
 const StageTimes& CpuPipeline::times() const { return impl_->times; }

@@ -2,7 +2,9 @@
 // CPU reference pixel pipeline (thesis §5.2.3-5.2.9, A.3): raw camera frame ->
 // blobs on the rectified field grid of one camera.
 //
-//   Bayer 2x2 subsampling (channels co-sited at the cell center)
+//   Bayer 2x2 subsampling (channels co-sited at the cell center), or the
+//   same at every pixel for cameras whose 2x2 cells are coarse on the field
+//   (bayer_sampling.h)
 //   -> rectification to the plane z = plane_height through a remap table
 //   -> chroma (dRGB or YUV), divided by local brightness so scores do not
 //      depend on exposure or uneven light
@@ -43,7 +45,10 @@ class CpuPipeline {
 
   const RectifiedGrid& grid() const;
   const StageTimes& times() const;
+  // Options as used: bayer_sampling resolved (never Auto).
   const PipelineOptions& options() const;
+  // How the camera's mosaic is sampled and why (one line for the log).
+  const std::string& samplingNote() const;
   // Gradient distance (cells) and quadrant radius (cells) in use.
   double gradientScale() const;
   int quadrantRadius() const;

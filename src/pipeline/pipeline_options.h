@@ -6,23 +6,30 @@ namespace dv {
 enum class ColorSpace { DRGB, YUV };
 enum class BayerPattern { None /* input is BGR 8UC3 */, RGGB, GRBG, GBRG, BGGR };
 enum class BlobScoreKind { QuadrantMin, CircleMin };
+// How a Bayer mosaic becomes color samples (see bayer_sampling.h):
+//   Subsample  one sample per 2x2 cell (thesis 5.2.3), a quarter of the pixels;
+//   Full       one sample per pixel (every 2x2 window, the same arithmetic);
+//   Auto       Full where the camera's 2x2 cells are coarse on the field.
+enum class BayerSampling { Auto, Subsample, Full };
 
 struct PipelineOptions {
   ColorSpace color = ColorSpace::DRGB;
   BlobScoreKind score = BlobScoreKind::QuadrantMin;
   BayerPattern bayer = BayerPattern::RGGB;
+  BayerSampling bayer_sampling = BayerSampling::Auto;
   double plane_height = 150;  // mm, rectification plane (max robot height)
   // Blob score threshold. Scores are ratios (weakest quadrant's mean gradient
   // dot product over the window's mean gradient energy plus a small floor, in
   // exposure-normalised chroma), so one value serves every exposure and light
-  // level; low-resolution cameras are resampled to a finer grid
-  // (kResampleAboveMm), so the windows are the same in mm at 1224 x 1024 and
-  // 2448 x 2048. Measured on the synthetic
+  // level; low-resolution cameras are sampled at every pixel (bayer_sampling)
+  // or resampled to a finer grid (kResampleAboveMm), so the windows are the
+  // same in mm at 1224 x 1024 and 2448 x 2048. Measured on the synthetic
   // scenes seen from above (normal, uneven light, dark and noisy, blue white
   // balance, gray carpet, motion blur): at 2448 x 2048 side blobs score
   // 0.3..1; at 1224 x 1024 (blurrier blobs) mostly 0.25..0.7, a few below;
   // carpet texture and noise mostly below 0.2 (0.2 lets dark, noisy carpet
-  // at 1224 x 1024 through). Line crossings can score like blobs;
+  // at 1224 x 1024 through; 0.21 with full sampling costs precision 0.97
+  // there). Line crossings can score like blobs;
   // near-neutral blobs are dropped by color (see cpu_pipeline.cpp).
   double threshold = 0.24;
   int max_blobs = 2000;
@@ -41,5 +48,8 @@ struct StageTimes {
 // Parses "rggb", "grbg", "gbrg", "bggr" or "none" (case-insensitive); false if unknown.
 bool parseBayerPattern(const char* text, BayerPattern& out);
 const char* bayerPatternName(BayerPattern p);
+// Parses "auto", "subsample" or "full" (case-insensitive); false if unknown.
+bool parseBayerSampling(const char* text, BayerSampling& out);
+const char* bayerSamplingName(BayerSampling s);
 
 }  // namespace dv

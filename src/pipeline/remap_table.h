@@ -10,6 +10,13 @@
 
 namespace dv {
 
+// Where the color samples the table reads lie: sample (i, j) is centered on
+// full pixel (step * i + offset, step * j + offset).
+struct SampleLattice {
+  int step = 2;
+  double offset = 0.5;
+};
+
 struct RemapTable {
   int width = 0, height = 0;      // grid size
   int src_width = 0, src_height = 0;  // RGBX image size
@@ -20,11 +27,11 @@ struct RemapTable {
   // [y_begin, y_end). Only these need to be produced per frame.
   int x_begin = 0, x_end = 0, y_begin = 0, y_end = 0;
 
-  // sample_step: 2 for Bayer subsampling (sample (i, j) is centered on full
-  // pixel (2i + 0.5, 2j + 0.5)), 1 for full-resolution RGB.
+  // lattice: {2, 0.5} for Bayer subsampling, {1, 0.5} for full Bayer
+  // sampling (2x2 windows at every pixel), {1, 0} for RGB (sampleLattice()).
   template <class Pool>
   void build(const CameraModel& camera, const RectifiedGrid& grid, double plane_height,
-             int sample_step, Pool& pool);
+             SampleLattice lattice, Pool& pool);
 };
 
 }  // namespace dv
@@ -36,7 +43,9 @@ namespace dv {
 
 template <class Pool>
 void RemapTable::build(const CameraModel& camera, const RectifiedGrid& grid, double plane_height,
-                       int sample_step, Pool& pool) {
+                       SampleLattice lattice, Pool& pool) {
+  const int sample_step = lattice.step;
+  const double offset = lattice.offset;
   width = grid.width;
   height = grid.height;
   const auto& c = camera.calibration();
@@ -46,7 +55,6 @@ void RemapTable::build(const CameraModel& camera, const RectifiedGrid& grid, dou
   index.assign(n, 0);
   frac.assign(n, 0);
   valid.assign(n, 0);
-  const double offset = sample_step == 2 ? 0.5 : 0.0;
   pool.parallelFor(height, [&](int y_begin, int y_end) {
     for (int y = y_begin; y < y_end; ++y) {
       for (int x = 0; x < width; ++x) {

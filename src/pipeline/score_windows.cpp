@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "pipeline/bayer_sampling.h"
 
 namespace dv {
 
@@ -29,8 +30,10 @@ RectifiedGrid checkedGrid(const CameraModel& camera, const FieldModel& field, co
   if (w <= 0 || h <= 0) throw InputError(source, "calibration has no image size (pixel_image_width/height)");
   if (opt.bayer != BayerPattern::None && (w % 2 || h % 2 || w < 4 || h < 4))
     throw InputError(source, "Bayer image size " + std::to_string(w) + "x" + std::to_string(h) + " is not even");
-  const int sample_step = opt.bayer == BayerPattern::None ? 1 : 2;
-  auto g = computeRectifiedGrid(camera, field, opt.plane_height, sample_step);
+  PipelineOptions resolved = opt;
+  if (opt.bayer != BayerPattern::None && opt.bayer_sampling == BayerSampling::Auto)
+    resolved.bayer_sampling = chooseBayerSampling(camera, field, opt).mode;
+  auto g = computeRectifiedGrid(camera, field, opt.plane_height, sampleLattice(resolved).step);
   if (!g)
     throw InputError(source, "camera sees no part of the field at plane height " +
                                  std::to_string(opt.plane_height) + " mm");

@@ -80,8 +80,9 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     throw std::invalid_argument("OpenCL pipeline: image size too small");
   if (c.bayer && (c.image_width % 2 || c.image_height % 2))
     throw std::invalid_argument("OpenCL pipeline: Bayer image size must be even");
-  src_width_ = c.bayer ? c.image_width / 2 : c.image_width;
-  src_height_ = c.bayer ? c.image_height / 2 : c.image_height;
+  const bool subsampled = c.bayer && !c.full_bayer;
+  src_width_ = subsampled ? c.image_width / 2 : c.image_width;
+  src_height_ = subsampled ? c.image_height / 2 : c.image_height;
   const size_t cells = static_cast<size_t>(c.grid_width) * c.grid_height;
   if (c.grid_width < 8 || c.grid_height < 8 || c.remap_index.size() != cells ||
       c.remap_frac.size() != cells || c.peak_mask.size() != cells)
@@ -105,10 +106,15 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   fp64_ = ctx_->fp64();
   capacity_ = std::max({1024, 4 * c.max_blobs, 16});
   const int ws = src_width_, hs = src_height_;
+  // Where the brightness is measured: samples, or the 2x2 cells under full
+  // samples (as fullBayerCells in pipeline/bayer_full.h).
+  cl_int4 region = {{c.region_x_begin, c.region_x_end, c.region_y_begin, c.region_y_end}};
+  if (c.full_bayer)
+    region = {{c.region_x_begin / 2, (c.region_x_end + 1) / 2, c.region_y_begin / 2, (c.region_y_end + 1) / 2}};
   {
     // Samples of the brightness sum, as the CPU reference counts them.
-    const int rows = std::max(0, c.region_y_end - c.region_y_begin);
-    const int cols = std::max(0, c.region_x_end - c.region_x_begin);
+    const int rows = std::max(0, region.s[3] - region.s[2]);
+    const int cols = std::max(0, region.s[1] - region.s[0]);
     const double n = (c.bayer ? 6.0 : 3.0) * ((rows + 15) / 16) * ((cols + 3) / 4);
     luma_count_ = static_cast<float>(std::max(1.0, n));
   }
@@ -194,8 +200,20 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
 
   const cl_int4 ka = {{c.chroma_a[0], c.chroma_a[1], c.chroma_a[2], 0}};
   const cl_int4 kb = {{c.chroma_b[0], c.chroma_b[1], c.chroma_b[2], 0}};
-  const cl_int4 region = {{c.region_x_begin, c.region_x_end, c.region_y_begin, c.region_y_end}};
-  if (c.bayer) {
+  const cl_int4 sites = {{c.red_x, c.red_y, c.blue_x, c.blue_y}};
+  if (c.full_bayer) {
+    b_->subsample = ctx_->createKernel("bayer_full_chroma");
+    argMem(b_->subsample, 0, input);
+    argInt(b_->subsample, 1, frame_stride_);
+    argInt(b_->subsample, 2, ws);
+    argInt(b_->subsample, 3, hs);
+    arg(b_->subsample, 4, sizeof sites, &sites);
+    arg(b_->subsample, 5, sizeof ka, &ka);
+    arg(b_->subsample, 6, sizeof kb, &kb);
+    arg(b_->subsample, 7, sizeof region, &region);
+    argMem(b_->subsample, 8, b_->packed);
+    argMem(b_->subsample, 9, b_->results);
+  } else if (c.bayer) {
     b_->subsample = ctx_->createKernel("bayer_chroma");
     argMem(b_->subsample, 0, input);
     argInt(b_->subsample, 1, frame_stride_);
@@ -308,8 +326,7 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argFloat(b_->peaks, 12, c.energy_floor);
   argMem(b_->peaks, 13, input);
   argInt(b_->peaks, 14, frame_stride_);
-  argInt(b_->peaks, 15, c.bayer ? 1 : 0);
-  const cl_int4 sites = {{c.red_x, c.red_y, c.blue_x, c.blue_y}};
+  argInt(b_->peaks, 15, c.full_bayer ? 2 : (c.bayer ? 1 : 0));
   arg(b_->peaks, 16, sizeof sites, &sites);
   argInt(b_->peaks, 17, ws);
   argInt(b_->peaks, 18, hs);

@@ -22,17 +22,22 @@ struct OclEngineConfig {
   // Input frame: 8-bit Bayer mosaic (bayer = true, even size) or 8-bit BGR.
   int image_width = 0, image_height = 0;
   bool bayer = true;
+  // Full Bayer sampling (pipeline/bayer_full.h): a sample per pixel instead
+  // of per 2x2 cell.
+  bool full_bayer = false;
   int red_x = 0, red_y = 0, blue_x = 1, blue_y = 1;  // Bayer sites in the 2x2 cell
 
   // Rectified grid and its remap table into the RGBX image (image size / 2 for
-  // Bayer): top-left sample index and fractions fx | fy << 8 in 1/256 sample.
+  // subsampled Bayer): top-left sample index and fractions fx | fy << 8 in
+  // 1/256 sample.
   int grid_width = 0, grid_height = 0;
   std::vector<int32_t> remap_index;
   std::vector<uint16_t> remap_frac;
   std::vector<uint8_t> peak_mask;  // 1 where a peak may be reported
 
   // The samples the table reads: columns [x_begin, x_end), rows [y_begin,
-  // y_end) of the subsampled image; the frame brightness is measured there.
+  // y_end) of the sample image; the frame brightness is measured there (on the
+  // 2x2 cells under them for full Bayer sampling, as fullBayerCells).
   int region_x_begin = 0, region_x_end = 0, region_y_begin = 0, region_y_end = 0;
 
   // Chroma coefficients in 1/1024 (pipeline/bayer_subsample.h, ChromaFixed).

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/kernels.h"
 #include "pipeline/remap_table.h"
@@ -21,13 +22,17 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     : camera_(camera), opt_(opt) {
   const auto& c = camera_.calibration();
   const int image_w = static_cast<int>(c.image_width), image_h = static_cast<int>(c.image_height);
+  const BayerSamplingChoice sampling = chooseBayerSampling(camera_, field, opt_);
+  opt_.bayer_sampling = sampling.mode;
+  sampling_note_ = sampling.describe();
   grid_ = checkedGrid(camera_, field, opt_);
-  const int sample_step = opt_.bayer == BayerPattern::None ? 1 : 2;
+  const SampleLattice lattice = sampleLattice(opt_);
 
   OclEngineConfig cfg;
   cfg.image_width = image_w;
   cfg.image_height = image_h;
   cfg.bayer = opt_.bayer != BayerPattern::None;
+  cfg.full_bayer = cfg.bayer && opt_.bayer_sampling == BayerSampling::Full;
   const BayerSites sites = bayerSites(opt_.bayer);
   cfg.red_x = sites.rx, cfg.red_y = sites.ry, cfg.blue_x = sites.bx, cfg.blue_y = sites.by;
   cfg.grid_width = grid_.width;
@@ -55,7 +60,7 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   {
     ThreadPool pool(opt_.threads);
     RemapTable table;
-    table.build(camera_, grid_, opt_.plane_height, sample_step, pool);
+    table.build(camera_, grid_, opt_.plane_height, lattice, pool);
     cfg.region_x_begin = table.x_begin, cfg.region_x_end = table.x_end;
     cfg.region_y_begin = table.y_begin, cfg.region_y_end = table.y_end;
     cfg.remap_index = std::move(table.index);

@@ -27,6 +27,7 @@ class OpenClPipeline final : public PixelPipeline {
   const StageTimes& times() const override { return times_; }
   double uploadMs() const override { return engine_->times().upload_ms; }
   const PipelineOptions& options() const override { return opt_; }
+  const std::string& samplingNote() const override { return sampling_note_; }
   std::optional<ImagePx> gridToImage(GridPx g) const override;
   std::string name() const override;
 
@@ -43,6 +44,7 @@ class OpenClPipeline final : public PixelPipeline {
   std::unique_ptr<OclEngine> engine_;
   StageTimes times_;
   std::string error_;
+  std::string sampling_note_;
 };
 
 }  // namespace dv
