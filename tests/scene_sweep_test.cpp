@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -268,6 +269,44 @@ TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
     // threshold about 12 % of the time (pink: 1 %); a robot missing two is
     // lost and one missing one gets a guessed id.
     EXPECT_GE(s.recall(), half ? 0.75 : 0.95);
+  }
+}
+
+// An outsider's directory of independent scenes is played as a 60 fps
+// sequence: history from one scene must not give robots of the next scene
+// the identities of those that stood there before.
+TEST(SceneSweepSequence, IndependentScenesAsOneSequenceScoreAsFramesAlone) {
+  const Condition* crowd = nullptr;  // 16 + 16 robots: chance meetings are frequent
+  for (const auto& c : conditions())
+    if (std::string(c.name) == "crowd_16_16") crowd = &c;
+  ASSERT_NE(crowd, nullptr);
+  const int frames = fullRun() ? 12 : 6;
+  std::unique_ptr<Detector> tracked, alone;
+  std::unique_ptr<CpuPipeline> pipeline;
+  SceneScore with_history, without;
+  for (int k = 0; k < frames; ++k) {
+    const SceneSpec spec = conditionScene(*crowd, k, true);
+    const CameraModel cam(spec.cameras[0].calib);
+    if (!pipeline) {
+      PipelineOptions popt;
+      popt.bayer = test::pipelineBayer(spec);
+      pipeline = std::make_unique<CpuPipeline>(cam, spec.field, popt);
+      tracked = std::make_unique<Detector>(cam, spec.field, DetectorOptions{});
+      DetectorOptions single;
+      single.tracking = false;
+      alone = std::make_unique<Detector>(cam, spec.field, single);
+    }
+    const RenderedFrame frame = Renderer(spec).render(0, 0);
+    BlobList blobs;
+    ASSERT_TRUE(pipeline->process(frame.image, blobs));
+    Detections a, b;
+    tracked->process(blobs, k / 60.0, a);
+    alone->process(blobs, k / 60.0, b);
+    ASSERT_EQ(a.robots.size(), b.robots.size()) << "scene " << k;
+    for (size_t i = 0; i < a.robots.size(); ++i) {
+      EXPECT_EQ(a.robots[i].team, b.robots[i].team) << "scene " << k;
+      EXPECT_EQ(a.robots[i].id, b.robots[i].id) << "scene " << k;
+    }
   }
 }
 
