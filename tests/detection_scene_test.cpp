@@ -5,158 +5,17 @@
 // more frames per condition (for the report).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
-#include <vector>
 
-#include "detection/detector.h"
-#include "geometry/robot_pattern.h"
-#include "pipeline/cpu_pipeline.h"
-#include "synth/renderer.h"
-#include "synth/scene.h"
+#include "scene_scoring.h"
 
 namespace dv {
 namespace {
 
-struct SceneScore {
-  int truth_robots = 0, matched = 0, id_ok = 0, detected = 0;
-  int truth_balls = 0, balls_matched = 0, balls_detected = 0;
-  // Objects whose blobs reached the detector (center + 3 sides for robots,
-  // a blob for the ball): what blob assignment alone can be held to.
-  int detectable_robots = 0, detectable_matched = 0, detectable_balls = 0,
-      detectable_balls_matched = 0;
-  std::vector<double> pos_err, ang_err, ball_err;
-
-  double recall() const { return truth_robots ? double(matched) / truth_robots : 1; }
-  double precision() const { return detected ? double(matched) / detected : 1; }
-  double idAccuracy() const { return matched ? double(id_ok) / matched : 1; }
-  double ballRecall() const { return truth_balls ? double(balls_matched) / truth_balls : 1; }
-  double ballPrecision() const { return balls_detected ? double(balls_matched) / balls_detected : 1; }
-  double detectableRecall() const {
-    return detectable_robots ? double(detectable_matched) / detectable_robots : 1;
-  }
-  double detectableBallRecall() const {
-    return detectable_balls ? double(detectable_balls_matched) / detectable_balls : 1;
-  }
-  static double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  }
-  std::string summary(const std::string& name) const {
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "%s: robots %d/%d recall %.4f precision %.4f id %.4f pos med %.2f mm ang med "
-                  "%.3f deg | balls %d/%d recall %.4f precision %.4f err med %.2f mm | blobs "
-                  "complete: robots %d/%d balls %d/%d",
-                  name.c_str(), matched, truth_robots, recall(), precision(), idAccuracy(),
-                  median(pos_err), median(ang_err) * 180 / kPi, balls_matched, truth_balls,
-                  ballRecall(), ballPrecision(), median(ball_err), detectable_matched,
-                  detectable_robots, detectable_balls_matched, detectable_balls);
-    return buf;
-  }
-};
-
-// Halves a camera's resolution (focal length, principal point, size).
-void halveResolution(SceneSpec& spec) {
-  for (auto& c : spec.cameras) {
-    auto& k = c.calib;
-    k.focal_length /= 2;
-    k.principal_point_x = (k.principal_point_x + 0.5) / 2 - 0.5;
-    k.principal_point_y = (k.principal_point_y + 0.5) / 2 - 0.5;
-    k.image_width /= 2;
-    k.image_height /= 2;
-  }
-}
-
-bool fullRun() {
-  const char* e = std::getenv("DV_SCENE_FULL");
-  return e && std::string(e) == "1";
-}
-
-// Runs `frames` frames of `spec` (camera 0). `alone`: every frame is
-// detected without history (reset before each).
-void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) {
-  Renderer renderer(spec);
-  const CameraModel cam(spec.cameras[0].calib);
-  PipelineOptions popt;
-  popt.bayer = spec.bayer ? BayerPattern::RGGB : BayerPattern::None;
-  CpuPipeline pipeline(cam, spec.field, popt);
-  DetectorOptions dopt;
-  dopt.tracking = !alone;
-  Detector detector(cam, spec.field, dopt);
-  BlobList blobs;
-  Detections out;
-  for (int f = 0; f < frames; ++f) {
-    const RenderedFrame frame = renderer.render(f, 0);
-    ASSERT_TRUE(pipeline.process(frame.image, blobs)) << pipeline.lastError();
-    if (alone) detector.reset();
-    detector.process(blobs, frame.truth.t_capture(), out);
-
-    // Blobs near where a point at height z appears on the blob plane.
-    const Eigen::Vector3d cpos = cam.position();
-    auto blobNear = [&](double x, double y, double z, double tol) {
-      const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - z);
-      const double px = cpos.x() + k * (x - cpos.x()), py = cpos.y() + k * (y - cpos.y());
-      for (const auto& b : blobs.blobs)
-        if (std::hypot(b.position.x - px, b.position.y - py) < tol) return true;
-      return false;
-    };
-    auto robotComplete = [&](const auto& t) {
-      if (!blobNear(t.x(), t.y(), t.height(), 12)) return false;
-      int sides = 0;
-      const double cs = std::cos(t.orientation()), sn = std::sin(t.orientation());
-      for (const auto& o : RobotPatternGeometry::kSideBlobs)
-        sides += blobNear(t.x() + cs * o.x - sn * o.y, t.y() + sn * o.x + cs * o.y, t.height(), 12);
-      return sides >= 3;
-    };
-    std::vector<bool> used(out.robots.size(), false);
-    s.detected += static_cast<int>(out.robots.size());
-    auto matchTeam = [&](const auto& list, Team team) {
-      for (const auto& t : list) {
-        ++s.truth_robots;
-        const bool complete = robotComplete(t);
-        s.detectable_robots += complete;
-        int best = -1;
-        double best_d = 60;
-        for (size_t i = 0; i < out.robots.size(); ++i) {
-          const double d =
-              std::hypot(out.robots[i].position.x - t.x(), out.robots[i].position.y - t.y());
-          if (!used[i] && d < best_d) best_d = d, best = static_cast<int>(i);
-        }
-        if (best < 0) continue;
-        used[best] = true;
-        ++s.matched;
-        s.detectable_matched += complete;
-        const auto& r = out.robots[best];
-        if (r.team == team && r.id == static_cast<int>(t.robot_id())) ++s.id_ok;
-        s.pos_err.push_back(best_d);
-        s.ang_err.push_back(std::abs(std::remainder(r.orientation - t.orientation(), 2 * kPi)));
-      }
-    };
-    matchTeam(frame.truth.robots_yellow(), Team::Yellow);
-    matchTeam(frame.truth.robots_blue(), Team::Blue);
-
-    s.balls_detected += static_cast<int>(out.balls.size());
-    for (const auto& b : frame.truth.balls()) {
-      ++s.truth_balls;
-      const bool complete = blobNear(b.x(), b.y(), b.z(), 15);
-      s.detectable_balls += complete;
-      for (const auto& d : out.balls) {
-        const double e = std::hypot(d.position.x - b.x(), d.position.y - b.y());
-        if (e < 50) {
-          ++s.balls_matched;
-          s.detectable_balls_matched += complete;
-          s.ball_err.push_back(e);
-          break;
-        }
-      }
-    }
-  }
-}
+using test::SceneScore;
+using test::fullRun;
+using test::halveResolution;
+using test::score;
 
 // Top-down half field, 11 + 11 robots at random ids and a ball, new random
 // placements per frame, each frame alone.

@@ -86,6 +86,49 @@ TEST(DetectionTracking, UnrelatedFrameTimesCarryNoHistory) {
   EXPECT_TRUE(out.robots.empty());
 }
 
+TEST(DetectionTracking, AnUnrelatedSceneAtTheNextFrameTimeInheritsNoIdentities) {
+  // Independent images played as a 60 fps sequence: in the second scene two
+  // robots happen to stand where the first scene had others, with other ids;
+  // each must be reported as seen, as a detector without history reports it.
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder first(cam, 21);
+  const auto old_robots = first.randomRobots(6, 6, 1000, 3500, -2000, 2000);
+  for (const auto& r : old_robots) first.addRobot(r);
+  SceneBuilder second(cam, 22);
+  std::vector<TrueRobot> robots;
+  for (int i = 0; i < 2; ++i) {
+    TrueRobot r = old_robots[i];
+    r.position.x += 40;  // inside the track gate of the old robot
+    r.id = (r.id + 5) % 16;
+    r.orientation += 2.0;
+    robots.push_back(r);
+  }
+  // The rest anywhere else, clear of the two.
+  for (auto r : second.randomRobots(4, 4, 1000, 3500, -2000, 2000, 300)) {
+    bool clear = true;
+    for (const auto& o : old_robots)
+      clear &= std::hypot(o.position.x - r.position.x, o.position.y - r.position.y) > 250;
+    for (const auto& o : robots) clear &= o.team != r.team || o.id != r.id;
+    if (clear) robots.push_back(r);
+  }
+  ASSERT_GE(robots.size(), 6u);
+  for (const auto& r : robots) second.addRobot(r);
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detector alone(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out, expected;
+  for (int f = 0; f < 3; ++f) det.process(first.list, f * kDt, out);
+  det.process(second.list, 3 * kDt, out);
+  alone.process(second.list, 3 * kDt, expected);
+  ASSERT_EQ(out.robots.size(), expected.robots.size());
+  ASSERT_EQ(out.robots.size(), robots.size());
+  for (const auto& e : expected.robots) {
+    const RobotDetection* r = findNear(out, e.position, 1);
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->team, e.team);
+    EXPECT_EQ(r->id, e.id);
+  }
+}
+
 TEST(DetectionTracking, UnconfirmedTracksAreDropped) {
   const CameraModel cam(test::topDownCamera());
   Detector det(cam, FieldModel::divisionB(), DetectorOptions{});

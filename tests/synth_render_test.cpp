@@ -249,6 +249,44 @@ TEST(SynthRender, BayerPixelsSampleTheirOwnCenters) {
     }
 }
 
+TEST(SynthRender, BayerLayoutsPutEachColorOnItsSite) {
+  SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.0, 64, 48);
+  s.materials.carpet = {180, 140, 100};
+  const cv::Mat rgb = Renderer(s).render(0, 0).image;
+  s.bayer = true;
+  // Red site (x, y) in the 2x2 cell; blue diagonally opposite.
+  const struct {
+    BayerLayout layout;
+    int rx, ry;
+  } cases[] = {{BayerLayout::RGGB, 0, 0}, {BayerLayout::GRBG, 1, 0}, {BayerLayout::GBRG, 0, 1},
+               {BayerLayout::BGGR, 1, 1}};
+  for (const auto& c : cases) {
+    s.bayer_layout = c.layout;
+    const cv::Mat bayer = Renderer(s).render(0, 0).image;
+    for (int v = 0; v < bayer.rows; ++v)
+      for (int u = 0; u < bayer.cols; ++u) {
+        const bool xr = u % 2 == c.rx, yr = v % 2 == c.ry;
+        const int ch = xr && yr ? 2 : (!xr && !yr ? 0 : 1);
+        ASSERT_EQ(bayer.at<uint8_t>(v, u), rgb.at<cv::Vec3b>(v, u)[ch])
+            << "layout " << int(c.layout) << " at " << u << "," << v;
+      }
+  }
+}
+
+TEST(SynthRender, VignettingDarkensTheCornersByItsAmount) {
+  cv::Mat map(101, 201, CV_32F, cv::Scalar(1.0f));
+  applyVignetting(map, 0.6);
+  EXPECT_NEAR(map.at<float>(50, 100), 1.0, 1e-6);
+  EXPECT_NEAR(map.at<float>(0, 0), 0.4, 1e-5);
+  EXPECT_NEAR(map.at<float>(100, 200), 0.4, 1e-5);
+  EXPECT_GT(map.at<float>(50, 0), map.at<float>(0, 0));
+  // Through the renderer: a uniform carpet is darker in the corner.
+  SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.0, 64, 48);
+  s.lighting.vignetting = 0.5;
+  const cv::Mat img = Renderer(s).render(0, 0).image;
+  EXPECT_LT(img.at<cv::Vec3b>(0, 0)[1], 0.7 * img.at<cv::Vec3b>(24, 32)[1]);
+}
+
 TEST(SynthRender, TruthListsOnlyObjectsInsideTheImage) {
   SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.0);
   // 320x256 at f=600 from 2860 mm (robot tops): about +-760 x +-610 mm.

@@ -290,6 +290,31 @@ TEST(SynthScene, RandomRobotsAreDistinctApartAndInView) {
   EXPECT_EQ(again[5].position.x, robots[5].position.x);
 }
 
+TEST(SynthScene, RandomRobotsStayOutOfTheGoalWalls) {
+  // A camera over one goal: no robot may stand in the goal's walls.
+  SceneSpec s = defaultScene();
+  s.cameras = {makeCamera(0, {-4400, 0, 3000}, {-4400, 0, 0}, 600, 0, {}, 640, 480, {-1, 0, 0})};
+  s.ball.present = false;
+  s.robots.clear();
+  const double back = s.field.field_length / 2.0 + s.field.line_thickness / 2.0 + s.field.goal_depth;
+  for (uint64_t seed = 1; seed <= 20; ++seed)
+    for (const auto& r : placeRandomRobots(s, 0, 8, 8, seed, 180, 10)) {
+      const bool in_goal_rows = std::abs(r.position.y) < s.field.goal_width / 2.0 + 90;
+      if (in_goal_rows) EXPECT_GE(r.position.x, -back + 90) << "seed " << seed;
+    }
+}
+
+TEST(SynthScene, BayerKeyTakesALayoutOrABoolean) {
+  const std::string head = "cameras: [{id: 0, position: [0, 0, 4000], look_at: [0, 0, 0], focal_length: 500, size: [64, 48]}]\n";
+  EXPECT_EQ(sceneFromYaml(head + "bayer: gbrg\n", "t").bayer_layout, BayerLayout::GBRG);
+  EXPECT_TRUE(sceneFromYaml(head + "bayer: bggr\n", "t").bayer);
+  EXPECT_FALSE(sceneFromYaml(head + "bayer: false\n", "t").bayer);
+  EXPECT_EQ(sceneFromYaml(head + "bayer: true\n", "t").bayer_layout, BayerLayout::RGGB);
+  EXPECT_THROW(sceneFromYaml(head + "bayer: rgbg\n", "t"), InputError);
+  EXPECT_DOUBLE_EQ(sceneFromYaml(head + "lighting: {vignetting: 0.4}\n", "t").lighting.vignetting, 0.4);
+  EXPECT_THROW(sceneFromYaml(head + "lighting: {vignetting: 1.5}\n", "t"), InputError);
+}
+
 // Runs the CLI; returns its exit code and stderr.
 int runCli(const std::string& args, std::string& err) {
   const std::string err_path = writeTemp("cli_stderr.txt", "");

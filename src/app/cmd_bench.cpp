@@ -14,6 +14,7 @@
 
 #include "app/camera_processor.h"
 #include "app/commands.h"
+#include "app/synthetic_source.h"
 #include "core/error.h"
 #include "eval/metrics.h"
 #include "geometry/geometry_io.h"
@@ -137,7 +138,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       for (int n = 0; n < spec.frames; ++n) {
         Frame f;
         f.image = renderer.render(n, 0).image;
-        f.format = spec.bayer ? PixelFormat::BayerRggb8 : PixelFormat::Bgr8;
+        f.format = sceneFormat(spec);
         f.index = static_cast<uint32_t>(n);
         f.t_capture = n / spec.fps;
         f.name = "synthetic frame " + std::to_string(n);

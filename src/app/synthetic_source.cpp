@@ -2,6 +2,17 @@
 
 namespace dv::app {
 
+PixelFormat sceneFormat(const SceneSpec& spec) {
+  if (!spec.bayer) return PixelFormat::Bgr8;
+  switch (spec.bayer_layout) {
+    case BayerLayout::RGGB: return PixelFormat::BayerRggb8;
+    case BayerLayout::GRBG: return PixelFormat::BayerGrbg8;
+    case BayerLayout::GBRG: return PixelFormat::BayerGbrg8;
+    case BayerLayout::BGGR: return PixelFormat::BayerBggr8;
+  }
+  return PixelFormat::BayerRggb8;
+}
+
 SyntheticSource::SyntheticSource(const SceneSpec& spec, std::vector<size_t> camera_indices)
     : renderer_(spec), cameras_(std::move(camera_indices)) {
   if (cameras_.empty())
@@ -13,7 +24,7 @@ bool SyntheticSource::next(Frame& f) {
   if (frame_ >= spec.frames || cameras_.empty()) return false;
   RenderedFrame rendered = renderer_.render(frame_, cameras_[camera_]);
   f.image = rendered.image;
-  f.format = spec.bayer ? PixelFormat::BayerRggb8 : PixelFormat::Bgr8;
+  f.format = sceneFormat(spec);
   f.index = static_cast<uint32_t>(frame_);
   f.t_capture = frame_ / spec.fps;
   f.name = "scene '" + spec.name + "' camera " +

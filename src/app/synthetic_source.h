@@ -10,6 +10,9 @@
 
 namespace dv::app {
 
+// The pixel format of the frames `spec` renders (BGR or its Bayer layout).
+PixelFormat sceneFormat(const SceneSpec& spec);
+
 class SyntheticSource : public FrameSource {
  public:
   // camera_indices: indices into spec.cameras to render (all if empty).

@@ -21,6 +21,9 @@ constexpr int kMaxNeighbors = 10;       // side blob candidates per center
 constexpr int kMaxSlotCandidates = 3;   // blobs per predicted slot (tracking)
 constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs
 constexpr double kFourBlobPenalty = 0.5;  // rank factor for a missing side blob
+// Robots a frame and the tracks must both have before their overlap can say
+// whether the frame continues the tracked scene.
+constexpr int kSceneCheckMinRobots = 4;
 
 ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
 
@@ -118,6 +121,7 @@ struct Detector::Impl {
   std::vector<float> score_buf;
   double last_t = 0;
   bool have_frame = false;
+  bool new_scene = false;  // this frame dropped the history (unrelated scene)
 
   Impl(const CameraModel& cam, const FieldModel& f, const DetectorOptions& o)
       : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
@@ -630,9 +634,30 @@ struct Detector::Impl {
     h.id = tr.id;
   }
 
+  // A frame that shares few of its robots with the tracks shows an unrelated
+  // scene (independent images played as a sequence): a frame that follows
+  // the last one re-finds nearly every robot near its prediction, while a
+  // new scene meets old tracks only by chance. A dark or occluded frame has
+  // few fresh robots, and those it has still meet their tracks.
+  bool unrelatedToTracks() const {
+    const int fresh = static_cast<int>(robots.size()), known = static_cast<int>(tracks.size());
+    const int fewer = std::min(fresh, known);
+    if (fewer < kSceneCheckMinRobots) return false;
+    int associated = 0;
+    for (int k : track_match) associated += k >= 0;
+    return 2 * associated < fewer;
+  }
+
   void track(double t) {
     predictTracks(t);
     associateTracks();
+    if (unrelatedToTracks()) {
+      tracks.clear();
+      ball_tracks.clear();
+      track_match.assign(robots.size(), -1);
+      track_taken.clear();
+      new_scene = true;
+    }
     const size_t fresh = robots.size();
     for (size_t k = 0; k < tracks.size(); ++k)
       if (!track_taken[k]) recoverTrack(static_cast<int>(k));
@@ -742,7 +767,7 @@ struct Detector::Impl {
       c.blob = i;
       c.pos = p;
       double temporal = 1.0;
-      if (tracking && have_frame) {
+      if (tracking && have_frame && !new_scene) {
         temporal = 0.85;
         double best = std::numeric_limits<double>::max();
         for (size_t k = 0; k < ball_tracks.size(); ++k) {
@@ -838,7 +863,8 @@ struct Detector::Impl {
     out.balls.clear();
     out.robots.clear();
     // Time going backwards or a long gap: the frames are unrelated.
-    if (have_frame && (t <= last_t || t - last_t > 0.5)) {
+    new_scene = have_frame && (t <= last_t || t - last_t > 0.5);
+    if (new_scene) {
       tracks.clear();
       ball_tracks.clear();
     }

@@ -14,7 +14,8 @@
 //     side colors, retention/reference forces eq. 5.25;
 //  4. tracking (§5.3.6): robots missing blobs are recovered from the
 //     predicted pose with two or more blobs; identities change only after
-//     several frames of agreeing contrary evidence;
+//     several frames of agreeing contrary evidence; a frame that shares under
+//     half its robots with the tracks starts afresh (an unrelated scene);
 //  5. balls: blobs outside robots whose color is nearest to the learned
 //     orange class among all learned classes, ranked by color margin, blob
 //     strength and temporal consistency (a ball track predicts straight on,

@@ -298,9 +298,11 @@ struct Renderer::Impl {
     line_bins.push_back(std::move(lb));
     box_bins.push_back(std::move(bb));
     const SceneLighting& l = spec.lighting;
-    uneven.push_back(l.uneven_ratio != 1
-                         ? unevenLightMap(cr.width, cr.height, l.uneven_ratio, l.uneven_direction)
-                         : cv::Mat());
+    cv::Mat light;
+    if (l.uneven_ratio != 1 || l.vignetting != 0)
+      light = unevenLightMap(cr.width, cr.height, l.uneven_ratio, l.uneven_direction);
+    if (l.vignetting != 0) applyVignetting(light, l.vignetting);
+    uneven.push_back(light);
   }
 
   // Field-space light: sun patches and cast shadows of the hall.
@@ -696,6 +698,7 @@ RenderedFrame Renderer::render(int frame, size_t camera_index) const {
   s.noise_sigma = spec_.noise_sigma;
   s.shot_noise = spec_.shot_noise;
   s.bayer = spec_.bayer;
+  s.layout = spec_.bayer_layout;
   s.noise_seed = mixSeed(spec_.seed, uint64_t(frame) + 1, camera_index + 1);
   RenderedFrame out;
   if (spec_.bayer && spec_.write_png) {

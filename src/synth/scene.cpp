@@ -20,10 +20,28 @@ Eigen::Vector3d vec(const FieldPoint& p) { return {p.x, p.y, p.z}; }
 constexpr double kWallClearance = 110;
 constexpr double kRobotRadius = RobotPatternGeometry::kMaxRadius;  // body
 
+// Inside the walls and clear of both goals' walls (their inner faces: the
+// back wall at goal_depth behind the goal line, the side walls at the goal
+// posts), so that no robot stands in a wall the renderer draws.
 bool insideWalls(const FieldModel& f, FieldMm p, double clearance) {
   const FieldRect r = f.withBoundary();
-  return p.x >= r.x_min + clearance && p.x <= r.x_max - clearance &&
-         p.y >= r.y_min + clearance && p.y <= r.y_max - clearance;
+  if (!(p.x >= r.x_min + clearance && p.x <= r.x_max - clearance &&
+        p.y >= r.y_min + clearance && p.y <= r.y_max - clearance))
+    return false;
+  const double front = f.field_length / 2.0 + f.line_thickness / 2.0;
+  const double back = front + f.goal_depth, gw = f.goal_width / 2.0;
+  auto segment = [&](FieldMm a, FieldMm b) {  // distance from p to segment ab
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+    return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+  };
+  for (double sx : {-1.0, 1.0}) {
+    if (segment({sx * back, -gw}, {sx * back, gw}) < clearance ||
+        segment({sx * front, gw}, {sx * back, gw}) < clearance ||
+        segment({sx * front, -gw}, {sx * back, -gw}) < clearance)
+      return false;
+  }
+  return true;
 }
 
 // Smallest distance between two points moving linearly over [0, duration].

@@ -16,6 +16,10 @@
 
 namespace dv {
 
+// Where the color sites of a Bayer mosaic lie, named by the first 2x2 cell
+// read row by row (RGGB: red at even row and even column).
+enum class BayerLayout { RGGB, GRBG, GBRG, BGGR };
+
 struct Rgb {
   double r = 0, g = 0, b = 0;
 };
@@ -76,6 +80,9 @@ struct SceneLighting {
   // increasing along image direction `uneven_direction` (rad, 0 = +u).
   double uneven_ratio = 1.0;
   double uneven_direction = 0;
+  // Lens vignetting: brightness falls with the squared distance from the
+  // image center to 1 - vignetting at the corners (0 = none).
+  double vignetting = 0;
   std::vector<LightPatch> sun_patches;  // gain > 1
   std::vector<LightPatch> shadows;      // gain < 1
   // Soft contact shadows that robots and the ball cast on the carpet (0..1).
@@ -120,7 +127,8 @@ struct SceneSpec {
   double fps = 60;
   bool motion_blur = false;
   int motion_blur_samples = 5;  // sub-frame renders averaged per frame
-  bool bayer = true;            // write 8-bit RGGB PGM frames
+  bool bayer = true;            // write 8-bit Bayer PGM frames
+  BayerLayout bayer_layout = BayerLayout::RGGB;
   bool write_png = false;       // write PNG RGB frames as well
   int antialias = 2;            // samples per pixel axis
 };
@@ -147,7 +155,7 @@ SceneSpec defaultScene();
 
 // Places `yellow` + `blue` robots with random distinct ids, at least
 // `min_distance` mm apart (and from the ball and the scene's own robots, whose
-// ids they do not reuse), on the field inside camera
+// ids they do not reuse), inside the walls and clear of the goals' walls, in camera
 // `camera_index`'s view (center blob at least `margin_px` inside the image),
 // with random orientations. Returns only the new robots. Deterministic for
 // `seed`. Throws

@@ -319,14 +319,15 @@ LightPatch readPatch(const SceneReader& r, const YAML::Node& n, const std::strin
 
 SceneLighting readLighting(const SceneReader& r, const YAML::Node& n) {
   r.checkKeys(n, "lighting",
-              {"exposure", "white_balance", "uneven_ratio", "uneven_direction", "sun_patches",
-               "shadows", "object_shadow", "flicker_amplitude", "flicker_frequency",
-               "exposure_time"});
+              {"exposure", "white_balance", "uneven_ratio", "uneven_direction", "vignetting",
+               "sun_patches", "shadows", "object_shadow", "flicker_amplitude",
+               "flicker_frequency", "exposure_time"});
   SceneLighting l;
   with(n, "exposure", [&](const YAML::Node& v) { l.exposure = r.number(v, "lighting.exposure", 0, 100); });
   with(n, "white_balance", [&](const YAML::Node& v) { l.white_balance = r.color(v, "lighting.white_balance"); });
   with(n, "uneven_ratio", [&](const YAML::Node& v) { l.uneven_ratio = r.number(v, "lighting.uneven_ratio", 1, 100); });
   with(n, "uneven_direction", [&](const YAML::Node& v) { l.uneven_direction = r.number(v, "lighting.uneven_direction", -100, 100); });
+  with(n, "vignetting", [&](const YAML::Node& v) { l.vignetting = r.number(v, "lighting.vignetting", 0, 0.95); });
   auto patches = [&](const char* key, double gain, std::vector<LightPatch>& out) {
     with(n, key, [&](const YAML::Node& v) {
       if (!v.IsSequence()) r.fail(v, std::string("lighting.") + key + ": expected a list");
@@ -410,7 +411,20 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
   with(root, "fps", [&](const YAML::Node& v) { s.fps = r.number(v, "fps", 0.01, 10000); });
   with(root, "motion_blur", [&](const YAML::Node& v) { s.motion_blur = r.boolean(v, "motion_blur"); });
   with(root, "motion_blur_samples", [&](const YAML::Node& v) { s.motion_blur_samples = r.integer(v, "motion_blur_samples", 1, 64); });
-  with(root, "bayer", [&](const YAML::Node& v) { s.bayer = r.boolean(v, "bayer"); });
+  with(root, "bayer", [&](const YAML::Node& v) {
+    // true / false, or the layout of the mosaic (rggb, grbg, gbrg, bggr).
+    static const char* const kLayouts[] = {"rggb", "grbg", "gbrg", "bggr"};
+    for (int k = 0; k < 4; ++k)
+      if (v.IsScalar() && v.Scalar() == kLayouts[k]) {
+        s.bayer = true;
+        s.bayer_layout = static_cast<BayerLayout>(k);
+        return;
+      }
+    bool on = false;
+    if (!v.IsScalar() || !YAML::convert<bool>::decode(v, on))
+      r.fail(v, "bayer: expected true, false, rggb, grbg, gbrg or bggr, got '" + v.Scalar() + "'");
+    s.bayer = on;
+  });
   with(root, "png", [&](const YAML::Node& v) { s.write_png = r.boolean(v, "png"); });
   with(root, "antialias", [&](const YAML::Node& v) { s.antialias = r.integer(v, "antialias", 1, 8); });
 

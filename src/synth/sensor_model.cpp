@@ -28,6 +28,16 @@ cv::Mat unevenLightMap(int width, int height, double ratio, double direction) {
   return map;
 }
 
+void applyVignetting(cv::Mat& map, double vignetting) {
+  const double cu = 0.5 * (map.cols - 1), cv_ = 0.5 * (map.rows - 1);
+  const double k = vignetting / std::max(cu * cu + cv_ * cv_, 1e-9);
+  for (int v = 0; v < map.rows; ++v) {
+    float* row = map.ptr<float>(v);
+    for (int u = 0; u < map.cols; ++u)
+      row[u] *= float(1 - k * ((u - cu) * (u - cu) + (v - cv_) * (v - cv_)));
+  }
+}
+
 double flickerGain(const SceneLighting& l, double t) {
   if (l.flicker_amplitude == 0) return 1;
   const double w = 2 * kPi * l.flicker_frequency;
@@ -58,13 +68,17 @@ cv::Mat applySensor(cv::Mat& radiance, const cv::Mat& uneven, const SensorSettin
     return cv::saturate_cast<uint8_t>(std::lround(std::clamp(value, 0.0, 255.0)));
   };
   if (s.bayer) {
+    // Red site within the 2x2 cell; blue is diagonally opposite.
+    const int rx = s.layout == BayerLayout::GRBG || s.layout == BayerLayout::BGGR;
+    const int ry = s.layout == BayerLayout::GBRG || s.layout == BayerLayout::BGGR;
     cv::Mat out(rows, cols, CV_8UC1);
     for (int v = 0; v < rows; ++v) {
       const float* p = radiance.ptr<float>(v);
       uint8_t* o = out.ptr<uint8_t>(v);
       for (int u = 0; u < cols; ++u) {
-        // RGGB: R at (even, even), B at (odd, odd), G elsewhere; BGR storage.
-        const int channel = (v & 1) == 0 ? ((u & 1) == 0 ? 2 : 1) : ((u & 1) == 0 ? 1 : 0);
+        // BGR storage: 2 = R, 1 = G, 0 = B.
+        const bool xr = (u & 1) == rx, yr = (v & 1) == ry;
+        const int channel = xr && yr ? 2 : (!xr && !yr ? 0 : 1);
         o[u] = sensorValue(p[3 * u + channel]);
       }
     }

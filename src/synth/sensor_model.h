@@ -1,7 +1,7 @@
 #pragma once
 // What the camera does to the light that reaches it: uneven illumination
 // across the image, exposure, white balance and flicker gains, lens blur,
-// read and shot noise, clipping to 8 bits and the Bayer RGGB mosaic.
+// read and shot noise, clipping to 8 bits and the Bayer mosaic (any of the four layouts).
 #include <cstdint>
 #include <opencv2/core.hpp>
 
@@ -13,6 +13,10 @@ namespace dv {
 // a smooth exponential ramp, brightest / darkest = ratio across the image.
 cv::Mat unevenLightMap(int width, int height, double ratio, double direction);
 
+// Multiplies `map` (CV_32F) by the vignetting falloff 1 - v (r / r_corner)^2,
+// r measured from the image center.
+void applyVignetting(cv::Mat& map, double vignetting);
+
 // Mean of 1 + a sin(2 pi f s) over the exposure [t - T/2, t + T/2].
 double flickerGain(const SceneLighting& l, double t);
 
@@ -22,12 +26,13 @@ struct SensorSettings {
   double noise_sigma = 0;      // read noise, 8-bit levels
   double shot_noise = 0;       // variance per level of signal
   bool bayer = true;
+  BayerLayout layout = BayerLayout::RGGB;
   uint64_t noise_seed = 1;
 };
 
 // radiance: CV_32FC3 (B, G, R, 0..255 scale), modified in place (gains,
-// blur). uneven: CV_32F map or empty. Returns CV_8UC1 RGGB (R at even row and
-// even column) or CV_8UC3 BGR.
+// blur). uneven: CV_32F map or empty. Returns CV_8UC1 Bayer in s.layout or
+// CV_8UC3 BGR.
 cv::Mat applySensor(cv::Mat& radiance, const cv::Mat& uneven, const SensorSettings& s);
 
 }  // namespace dv
