@@ -245,8 +245,10 @@ struct CpuPipeline::Impl {
                                  static_cast<int>(list.size()), b, e);
       int kept = 0;
       for (int i = 0; i < n; ++i) {
-        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale,
-                                                  list[i].x, list[i].y, window);
+        // Energy above score / threshold fails the ratio test (the floor
+        // only lowers the ratio further), so its sum may stop there.
+        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, list[i].x,
+                                                  list[i].y, window, list[i].score / threshold);
         const float ratio = list[i].score / (energy + kEnergyFloor);
         if (ratio > threshold) list[kept++] = {list[i].x, list[i].y, ratio};
       }
