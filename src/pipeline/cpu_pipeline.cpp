@@ -36,6 +36,12 @@ struct CpuPipeline::Impl {
   RectifiedGrid grid;
   ThreadPool pool;
   RemapTable table;
+  // The table the rectification reads through: `table`, or its transposed
+  // form with the chroma samples stored transposed, when grid rows run along
+  // image columns (reading down image columns misses the cache every cell).
+  RemapTable table_t;
+  bool transposed = false;
+  const RemapTable& readTable() const { return transposed ? table_t : table; }
   ChromaTransform chroma;
   int sample_step = 2;   // full pixels per RGBX sample
   int image_w = 0, image_h = 0;
@@ -79,9 +85,14 @@ struct CpuPipeline::Impl {
     color_radius = w.color_radius;
 
     table.build(camera, grid, opt.plane_height, sample_step, pool);
+    transposed = sample_step == 2 && table.runsAlongColumns();
+    // A stride of 4 KiB would put every column of the transposed store into
+    // the same cache set: pad it off the power of two.
+    const int stride_t = (table.src_height + 15) / 16 * 16 + 16;
+    if (transposed) table_t = table.transposed(stride_t);
 
     const size_t cells = static_cast<size_t>(grid.width) * grid.height;
-    packed.assign(static_cast<size_t>(table.src_width) * table.src_height, 0);
+    packed.assign(static_cast<size_t>(table.src_width) * (transposed ? stride_t : table.src_height), 0);
     for (int c = 0; c < 3; ++c) {
       chroma_fixed.a[c] = static_cast<int>(std::lround(chroma.a[c] * 1024));
       chroma_fixed.b[c] = static_cast<int>(std::lround(chroma.b[c] * 1024));
@@ -162,7 +173,11 @@ struct CpuPipeline::Impl {
     const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
     if (bayer) {
       pool.parallelFor(rows, [&](int b, int e) {
-        bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+        if (transposed)
+          bayerChromaRowsTransposed(raw, opt.bayer, chroma_fixed, packed.data(), table_t.src_width, y0 + b,
+                                    y0 + e, x0, x1);
+        else
+          bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
       });
     } else {
       pool.parallelFor(rows, [&](int b, int e) {
@@ -203,7 +218,7 @@ struct CpuPipeline::Impl {
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(table, packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
+      rectifyChromaRows(readTable(), packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
                         cb.data(), b, e);
     });
     times.rectify_ms = msSince(t0);
