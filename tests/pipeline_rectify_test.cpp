@@ -1,7 +1,9 @@
-// Rectification paths of the CPU pipeline: a camera turned by 90 degrees reads
-// the chroma samples from a transposed copy; the planes must not change.
+// Alternative paths of the CPU pipeline that must not change a bit: a camera
+// turned by 90 degrees reads the chroma samples from a transposed copy; the
+// quadrant score sums the table's columns band by band.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <vector>
 
 #include "pipeline/bayer_subsample.h"
@@ -78,6 +80,29 @@ TEST(PipelineRectify, TopDownCameraKeepsTheImageOrder) {
   RemapTable table;
   table.build(cam, checkedGrid(cam, FieldModel::divisionB(), opt), opt.plane_height, 2, pool);
   EXPECT_FALSE(table.runsAlongColumns());
+}
+
+TEST(PipelineScore, BandsSummingTheirOwnColumnsGiveTheFullTableScore) {
+  const int w = 157, h = 123, r = 5, q = 2;
+  std::mt19937 rng(7);
+  // Gradient products of both signs, large enough that the table wraps.
+  std::uniform_int_distribution<int32_t> g_dist(-40000000, 60000000);
+  std::vector<int32_t> g(static_cast<size_t>(w) * h);
+  for (auto& v : g) v = g_dist(rng);
+  std::vector<uint32_t> sat((w + 1ull) * (h + 1ull), 0);
+  satRowPrefixRows(g.data(), w, h, sat.data(), 0, h);
+  const std::vector<uint32_t> row_prefix = sat;
+  satColumnPrefix(sat.data(), w, h, 0, w + 1);
+  std::vector<float> full(g.size(), -1), banded(g.size(), -1);
+  quadrantMinScoreRows(sat.data(), w, h, r, q, full.data(), 0, h);
+  std::vector<uint32_t> ring;
+  for (int b : {0, 3, 40, 41, 90})  // bands of every size, one inside the border
+    quadrantMinScoreFromRowPrefix(row_prefix.data(), w, h, r, q, banded.data(), b,
+                                  b == 90 ? h : (b == 0 ? 3 : b == 3 ? 40 : b == 40 ? 41 : 90), ring);
+  EXPECT_TRUE(full == banded);
+  float top = 0;
+  for (float v : full) top = std::max(top, v);
+  EXPECT_GT(top, 0.0f);
 }
 
 }  // namespace

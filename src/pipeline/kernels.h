@@ -3,6 +3,7 @@
 // thread pool can split them. No allocation, no exceptions.
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "pipeline/pipeline_options.h"
 #include "pipeline/remap_table.h"
@@ -75,6 +76,13 @@ void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_en
 // full quadrants.
 void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
                           int y_begin, int y_end);
+
+// The same scores from the row prefix table (pass 1 only): each band of rows
+// sums its columns from its own origin r rows above it, in a ring of 2r + 1
+// rows (`scratch`, sized on first use), so the full table is never written
+// or read back. Equal to quadrantMinScoreRows bit for bit.
+void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
+                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells
