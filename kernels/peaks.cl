@@ -31,27 +31,29 @@ inline float dv_peak_offset(float l, float c, float r) {
 }
 
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 window,
-// the same gradient as gradient_dot (pipeline/gradient_dot.cpp,
-// windowGradientEnergy; summed in double there, and here where available).
+// the same gradient and summation order as windowGradientEnergy
+// (pipeline/gradient_dot.cpp): a float sum down each column, the columns
+// added in double (where available).
 inline float dv_window_energy(__global const float2* chroma, int width, int k, float a, float na,
                               int x, int y, int r) {
   const size_t w = width;
   dv_real sum = 0;
-  for (int yy = y - r; yy <= y + r; ++yy) {
-    __global const float2* mid = chroma + yy * w;
-    for (int xx = x - r; xx <= x + r; ++xx) {
+  for (int xx = x - r; xx <= x + r; ++xx) {
+    float col = 0;
+    for (int yy = y - r; yy <= y + r; ++yy) {
+      __global const float2* mid = chroma + yy * w;
       const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
       const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
       const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
       const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
       const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
-      sum += (dv_real)0.5 * (dv_real)(gxa * gxa + gya * gya);
       const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
       const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
-      sum += (dv_real)0.5 * (dv_real)(gxb * gxb + gyb * gyb);
+      col += gxa * gxa + gya * gya + gxb * gxb + gyb * gyb;
     }
+    sum += (dv_real)col;
   }
-  return (float)(sum / ((2 * r + 1) * (2 * r + 1)));
+  return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
 }
 
 // Co-sited RGB of sample (i, j), clamped to the image: BGR (bayer 0),

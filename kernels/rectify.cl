@@ -1,14 +1,21 @@
 // Stage 2: rectification through the remap table (thesis §5.2.4), as
-// pipeline/rectify_color.cpp: bilinear interpolation (1/256-sample fractions)
-// of the packed int16 chroma pairs, times gain = 1 / (mean brightness * 64)
-// (exposure normalisation; the brightness sum comes from the Bayer stage).
-// Float operations are written in the CPU reference's order and contraction
-// into FMA is off, so the results agree to the last bit where division is
+// pipeline/rectify_color.cpp: exact integer bilinear interpolation
+// (1/256-sample fractions) of the packed int16 chroma pairs, times
+// gain / 2^16 with gain = 1 / (mean brightness * 64) (exposure normalisation;
+// the brightness sum comes from the Bayer stage). One float product after
+// exact integers, so the results agree to the last bit where division is
 // correctly rounded.
 #pragma OPENCL FP_CONTRACT OFF
 
-inline float dv_lo(uint p) { return (float)(short)(p & 0xffffu); }
-inline float dv_hi(uint p) { return (float)(as_int(p) >> 16); }
+inline int dv_lo(uint p) { return (int)(short)(p & 0xffffu); }
+inline int dv_hi(uint p) { return as_int(p) >> 16; }
+
+// Exact integer bilinear interpolation (weights in 1/256, x then y).
+inline int dv_lerp2(int v00, int v01, int v10, int v11, int fx, int fy) {
+  const int top = v00 * (256 - fx) + v01 * fx;
+  const int bot = v10 * (256 - fx) + v11 * fx;
+  return top * (256 - fy) + bot * fy;
+}
 
 __kernel void rectify_chroma(__global const uint* packed, int src_width,
                              __global const int* remap_index, __global const ushort* remap_frac,
@@ -27,10 +34,10 @@ __kernel void rectify_chroma(__global const uint* packed, int src_width,
   const size_t k = (size_t)y * width + x;
   const int i = remap_index[k];
   const uint fr = remap_frac[k];
-  const float fx = (float)(fr & 255u) * (1.0f / 256.0f), fy = (float)(fr >> 8) * (1.0f / 256.0f);
-  const float w11 = fx * fy, w01 = fx - w11, w10 = fy - w11, w00 = 1 - fx - fy + w11;
+  const int fx = (int)(fr & 255u), fy = (int)(fr >> 8);
   const uint p00 = packed[i], p01 = packed[i + 1], p10 = packed[i + src_width],
              p11 = packed[i + src_width + 1];
-  chroma[k] = (float2)((w00 * dv_lo(p00) + w01 * dv_lo(p01) + w10 * dv_lo(p10) + w11 * dv_lo(p11)) * gain,
-                       (w00 * dv_hi(p00) + w01 * dv_hi(p01) + w10 * dv_hi(p10) + w11 * dv_hi(p11)) * gain);
+  const float scale = gain * (1.0f / 65536.0f);
+  chroma[k] = (float2)((float)dv_lerp2(dv_lo(p00), dv_lo(p01), dv_lo(p10), dv_lo(p11), fx, fy) * scale,
+                       (float)dv_lerp2(dv_hi(p00), dv_hi(p01), dv_hi(p10), dv_hi(p11), fx, fy) * scale);
 }

@@ -33,6 +33,12 @@ struct ChromaFixed {
 // two 16-bit channels halves its arithmetic.
 void bayerChromaRows(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
                      uint32_t* packed, int row_begin, int row_end, int col_begin, int col_end);
+// The same values stored transposed: sample (i, j) at packed_t[i * stride + j],
+// stride >= rows / 2 (for grids whose rows run along image columns; see
+// RemapTable::transposed).
+void bayerChromaRowsTransposed(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
+                               uint32_t* packed_t, size_t stride, int row_begin, int row_end,
+                               int col_begin, int col_end);
 void bgrChromaRows(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin,
                    int row_end, int col_begin, int col_end);
 constexpr float kPackedChromaScale = 64.0f;

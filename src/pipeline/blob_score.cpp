@@ -7,11 +7,49 @@
 
 namespace dv {
 
-__attribute__((target_clones("avx2", "default"))) void quadrantMinScoreRows(
-    const uint32_t* sat, int width, int height, int r, int q, float* score, int y_begin, int y_end) {
-  const size_t stride = static_cast<size_t>(width) + 1;
+namespace {
+
+// One score row from the table rows at y - r, y - q, y, y + q, y + r (any
+// common per-column offset cancels: only differences are used).
+__attribute__((target_clones("avx2", "default"))) void quadrantScoreRow(
+    const uint32_t* s_top, const uint32_t* s_itop, const uint32_t* s_mid, const uint32_t* s_ibot,
+    const uint32_t* s_bot, int width, int r, int q, float norm, float* out) {
+  const int m = r + 1;
+  for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
+  // Box cell (x, y) sits at (x + 1/2, y + 1/2), so the quadrants of cell
+  // (x, y) are box columns [x-r, x) and [x, x+r), rows [y-r, y) and [y, y+r).
+  for (int x = m; x < width - m; ++x) {
+    const uint32_t c = s_mid[x];
+    // Full quadrant minus its inner q x q corner at the center.
+    const int32_t tl = static_cast<int32_t>((c - s_top[x] - s_mid[x - r] + s_top[x - r]) -
+                                            (c - s_itop[x] - s_mid[x - q] + s_itop[x - q]));
+    const int32_t tr = static_cast<int32_t>((s_mid[x + r] - s_top[x + r] - c + s_top[x]) -
+                                            (s_mid[x + q] - s_itop[x + q] - c + s_itop[x]));
+    const int32_t bl = static_cast<int32_t>((s_bot[x] - c - s_bot[x - r] + s_mid[x - r]) -
+                                            (s_ibot[x] - c - s_ibot[x - q] + s_mid[x - q]));
+    const int32_t br = static_cast<int32_t>((s_bot[x + r] - s_mid[x + r] - s_bot[x] + c) -
+                                            (s_ibot[x + q] - s_mid[x + q] - s_ibot[x] + c));
+    const int32_t m1 = std::min(tl, br), m2 = std::min(-tr, -bl);
+    out[x] = static_cast<float>(std::min(m1, m2)) * norm;
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void addRow(const uint32_t* a, const uint32_t* b,
+                                                              int n, uint32_t* out) {
+  for (int x = 0; x < n; ++x) out[x] = a[x] + b[x];
+}
+
+inline float quadrantNorm(int r, int q) {
   // 4 G cells per table cell (2x2 box sums).
-  const float norm = 1.0f / (4 * kGradientFixedPoint * (r * r - q * q));
+  return 1.0f / (4 * kGradientFixedPoint * (r * r - q * q));
+}
+
+}  // namespace
+
+void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
+                          int y_begin, int y_end) {
+  const size_t stride = static_cast<size_t>(width) + 1;
+  const float norm = quadrantNorm(r, q);
   const int m = r + 1;
   for (int y = y_begin; y < y_end; ++y) {
     float* out = score + static_cast<size_t>(y) * width;
@@ -19,29 +57,33 @@ __attribute__((target_clones("avx2", "default"))) void quadrantMinScoreRows(
       std::memset(out, 0, sizeof(float) * width);
       continue;
     }
-    for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
-    // Table row t holds sums over box rows < t; box cell (x, y) sits at
-    // (x + 1/2, y + 1/2), so the quadrants of cell (x, y) are box columns
-    // [x-r, x) and [x, x+r), rows [y-r, y) and [y, y+r).
-    const uint32_t* s_top = sat + (y - r) * stride;
-    const uint32_t* s_mid = sat + y * stride;
-    const uint32_t* s_bot = sat + (y + r) * stride;
-    const uint32_t* s_itop = sat + (y - q) * stride;
-    const uint32_t* s_ibot = sat + (y + q) * stride;
-    for (int x = m; x < width - m; ++x) {
-      const uint32_t c = s_mid[x];
-      // Full quadrant minus its inner q x q corner at the center.
-      const int32_t tl = static_cast<int32_t>((c - s_top[x] - s_mid[x - r] + s_top[x - r]) -
-                                              (c - s_itop[x] - s_mid[x - q] + s_itop[x - q]));
-      const int32_t tr = static_cast<int32_t>((s_mid[x + r] - s_top[x + r] - c + s_top[x]) -
-                                              (s_mid[x + q] - s_itop[x + q] - c + s_itop[x]));
-      const int32_t bl = static_cast<int32_t>((s_bot[x] - c - s_bot[x - r] + s_mid[x - r]) -
-                                              (s_ibot[x] - c - s_ibot[x - q] + s_mid[x - q]));
-      const int32_t br = static_cast<int32_t>((s_bot[x + r] - s_mid[x + r] - s_bot[x] + c) -
-                                              (s_ibot[x + q] - s_mid[x + q] - s_ibot[x] + c));
-      const int32_t m1 = std::min(tl, br), m2 = std::min(-tr, -bl);
-      out[x] = static_cast<float>(std::min(m1, m2)) * norm;
-    }
+    quadrantScoreRow(sat + (y - r) * stride, sat + (y - q) * stride, sat + y * stride, sat + (y + q) * stride,
+                     sat + (y + r) * stride, width, r, q, norm, out);
+  }
+}
+
+void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
+                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch) {
+  const size_t stride = static_cast<size_t>(width) + 1;
+  const float norm = quadrantNorm(r, q);
+  const int m = r + 1;
+  const int first = std::max(y_begin, m), last = std::min(y_end, height - m);  // rows with a score
+  for (int y = y_begin; y < y_end; ++y)
+    if (y < first || y >= last || width <= 2 * m) std::memset(score + static_cast<size_t>(y) * width, 0, sizeof(float) * width);
+  if (first >= last || width <= 2 * m) return;
+  // Column sums from table row t0 = first - r on (zero there), in a ring of
+  // 2r + 1 rows: the band's own origin, so bands need nothing from each other.
+  const int rows = 2 * r + 1;
+  scratch.resize(static_cast<size_t>(rows) * stride);  // no-op after the first frame
+  auto ring = [&](int t) { return scratch.data() + static_cast<size_t>(t % rows) * stride; };
+  const int t0 = first - r;
+  std::memset(ring(t0), 0, sizeof(uint32_t) * stride);
+  for (int t = t0 + 1; t <= last - 1 + r; ++t) {
+    addRow(ring(t - 1), row_prefix + static_cast<size_t>(t) * stride, static_cast<int>(stride), ring(t));
+    const int y = t - r;  // all of rows y - r .. y + r are now in the ring
+    if (y >= first)
+      quadrantScoreRow(ring(y - r), ring(y - q), ring(y), ring(y + q), ring(y + r), width, r, q, norm,
+                       score + static_cast<size_t>(y) * width);
   }
 }
 

@@ -38,6 +38,12 @@ struct CpuPipeline::Impl {
   RectifiedGrid grid;
   ThreadPool pool;
   RemapTable table;
+  // The table the rectification reads through: `table`, or its transposed
+  // form with the chroma samples stored transposed, when grid rows run along
+  // image columns (reading down image columns misses the cache every cell).
+  RemapTable table_t;
+  bool transposed = false;
+  const RemapTable& readTable() const { return transposed ? table_t : table; }
   ChromaTransform chroma;
   int sample_step = 2;   // full pixels per RGBX sample
   bool full_bayer = false;  // a sample per pixel of the mosaic (bayer_full.h)
@@ -88,9 +94,14 @@ struct CpuPipeline::Impl {
     color_radius = w.color_radius;
 
     table.build(camera, grid, opt.plane_height, lattice, pool);
+    transposed = !full_bayer && sample_step == 2 && table.runsAlongColumns();
+    // A stride of 4 KiB would put every column of the transposed store into
+    // the same cache set: pad it off the power of two.
+    const int stride_t = (table.src_height + 15) / 16 * 16 + 16;
+    if (transposed) table_t = table.transposed(stride_t);
 
     const size_t cells = static_cast<size_t>(grid.width) * grid.height;
-    packed.assign(static_cast<size_t>(table.src_width) * table.src_height, 0);
+    packed.assign(static_cast<size_t>(table.src_width) * (transposed ? stride_t : table.src_height), 0);
     for (int c = 0; c < 3; ++c) {
       chroma_fixed.a[c] = static_cast<int>(std::lround(chroma.a[c] * 1024));
       chroma_fixed.b[c] = static_cast<int>(std::lround(chroma.b[c] * 1024));
@@ -175,7 +186,11 @@ struct CpuPipeline::Impl {
       });
     } else if (bayer) {
       pool.parallelFor(rows, [&](int b, int e) {
-        bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+        if (transposed)
+          bayerChromaRowsTransposed(raw, opt.bayer, chroma_fixed, packed.data(), table_t.src_width, y0 + b,
+                                    y0 + e, x0, x1);
+        else
+          bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
       });
     } else {
       pool.parallelFor(rows, [&](int b, int e) {
@@ -219,7 +234,7 @@ struct CpuPipeline::Impl {
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(table, packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
+      rectifyChromaRows(readTable(), packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
                         cb.data(), b, e);
     });
     times.rectify_ms = msSince(t0);
@@ -231,10 +246,10 @@ struct CpuPipeline::Impl {
     times.gradient_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
+    // Row prefix sums only: the quadrant score sums the columns itself, band
+    // by band, so the full table is never written out.
     pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
     const bool circle = opt.score == BlobScoreKind::CircleMin;
-    if (!circle)
-      pool.parallelFor(gw + 1, [&](int b, int e) { satColumnPrefix(sat.data(), gw, gh, b, e); });
     times.sat_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
@@ -244,7 +259,8 @@ struct CpuPipeline::Impl {
       });
     } else {
       pool.parallelFor(gh, [&](int b, int e) {
-        quadrantMinScoreRows(sat.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e);
+        thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
+        quadrantMinScoreFromRowPrefix(sat.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e, ring);
       });
     }
     times.score_ms = msSince(t0);
@@ -261,8 +277,10 @@ struct CpuPipeline::Impl {
                                  static_cast<int>(list.size()), b, e);
       int kept = 0;
       for (int i = 0; i < n; ++i) {
-        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale,
-                                                  list[i].x, list[i].y, window);
+        // Energy above score / threshold fails the ratio test (the floor
+        // only lowers the ratio further), so its sum may stop there.
+        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, list[i].x,
+                                                  list[i].y, window, list[i].score / threshold);
         const float ratio = list[i].score / (energy + kEnergyFloor);
         if (ratio > threshold) list[kept++] = {list[i].x, list[i].y, ratio};
       }

@@ -2,11 +2,21 @@
 // Per-frame loops of the CPU pipeline, each over a range of rows so that the
 // thread pool can split them. No allocation, no exceptions.
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "pipeline/pipeline_options.h"
 #include "pipeline/remap_table.h"
 
 namespace dv {
+
+#if defined(__x86_64__)
+// Whether the hand-written AVX2 paths may run (the build is generic x86-64).
+inline bool cpuHasAvx2() {
+  static const bool yes = __builtin_cpu_supports("avx2");
+  return yes;
+}
+#endif
 
 // Chroma transform applied to the interpolated color. Two channels suffice:
 // dRGB (R - (G+B)/2, ...) is 1.5 times the projection onto the plane normal
@@ -20,6 +30,8 @@ struct ChromaTransform {
 // Rectify rows [y_begin, y_end) of the grid: bilinear interpolation of the
 // packed chroma samples (see bayerChromaRows; chroma is linear, so
 // interpolating it equals converting interpolated color), times `gain`.
+// The interpolation is exact integer arithmetic (1/256 weights, x then y),
+// then one float product by gain / 2^16.
 // Writes planes ca, cb (grid sized, row-major).
 void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float gain, float* ca,
                        float* cb, int y_begin, int y_end);
@@ -34,8 +46,10 @@ void gradientDotRows(const float* ca, const float* cb, int width, int height, do
 
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
 // (x, y), same gradient as gradientDotRows. Used only at peak candidates.
+// Stops early and returns give_up_above once the energy is known to exceed it
+// (callers that only compare against a limit need not sum the whole window).
 float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
-                           int r);
+                           int r, float give_up_above = std::numeric_limits<float>::infinity());
 
 // Summed-area table (thesis A.3) in modular 32-bit arithmetic: a box sum is
 // exact whenever its true value fits in 32 bits, whatever the table values.
@@ -62,6 +76,13 @@ void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_en
 // full quadrants.
 void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
                           int y_begin, int y_end);
+
+// The same scores from the row prefix table (pass 1 only): each band of rows
+// sums its columns from its own origin r rows above it, in a ring of 2r + 1
+// rows (`scratch`, sized on first use), so the full table is never written
+// or read back. Equal to quadrantMinScoreRows bit for bit.
+void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
+                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

@@ -32,6 +32,15 @@ struct RemapTable {
   template <class Pool>
   void build(const CameraModel& camera, const RectifiedGrid& grid, double plane_height,
              SampleLattice lattice, Pool& pool);
+
+  // True when grid rows run mostly along image columns (a camera turned by
+  // about 90 degrees): then each cell of a grid row reads another image row.
+  bool runsAlongColumns() const;
+  // The same table for the transposed sample image (sample (x, y) stored at
+  // x * stride + y, stride >= src_height): index and fractions with x and y
+  // exchanged, src_width = stride. Bilinear interpolation through it visits
+  // the same four samples with the same weights.
+  RemapTable transposed(int stride) const;
 };
 
 }  // namespace dv
@@ -86,6 +95,33 @@ void RemapTable::build(const CameraModel& camera, const RectifiedGrid& grid, dou
     x_begin = std::min(x_begin, x0), x_end = std::max(x_end, x0 + 2);
     y_begin = std::min(y_begin, y0), y_end = std::max(y_end, y0 + 2);
   }
+}
+
+inline bool RemapTable::runsAlongColumns() const {
+  long along_x = 0, along_y = 0;
+  for (int y = 0; y < height; y += 8) {
+    for (int x = 0; x + 1 < width; ++x) {
+      const size_t k = static_cast<size_t>(y) * width + x;
+      if (!valid[k] || !valid[k + 1]) continue;
+      along_x += std::abs(index[k + 1] % src_width - index[k] % src_width);
+      along_y += std::abs(index[k + 1] / src_width - index[k] / src_width);
+    }
+  }
+  return along_y > along_x;
+}
+
+inline RemapTable RemapTable::transposed(int stride) const {
+  RemapTable t = *this;
+  t.src_width = stride;
+  t.src_height = src_width;
+  std::swap(t.x_begin, t.y_begin);
+  std::swap(t.x_end, t.y_end);
+  for (size_t k = 0; k < index.size(); ++k) {
+    const int x0 = index[k] % src_width, y0 = index[k] / src_width;
+    t.index[k] = x0 * stride + y0;
+    t.frac[k] = static_cast<uint16_t>((frac[k] >> 8) | ((frac[k] & 255) << 8));
+  }
+  return t;
 }
 
 }  // namespace dv

@@ -1,5 +1,7 @@
 #include "pipeline/thread_pool.h"
 
+#include <chrono>
+
 #if defined(__linux__)
 #include <sched.h>
 #endif
@@ -18,68 +20,92 @@ int usableCores() {
   return static_cast<int>(std::thread::hardware_concurrency());
 }
 
+inline void cpuRelax() {
+#if defined(__x86_64__)
+  __builtin_ia32_pause();
+#endif
+}
+
+// Ranges per thread: enough that a thread the OS delays only holds back a
+// small part of the stage, few enough that a range stays a long stream.
+constexpr int kChunksPerThread = 4;
+// A frame's stages follow each other within microseconds; a worker that
+// keeps polling this long after a job catches the next one without the
+// sleep/wake-up latency of the condition variable, and sleeps between frames.
+constexpr auto kSpinAfterJob = std::chrono::microseconds(200);
+
 }  // namespace
 
 ThreadPool::ThreadPool(int threads) {
   size_ = threads > 0 ? threads : usableCores();
   if (size_ < 1) size_ = 1;
-  for (int i = 1; i < size_; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
+  for (int i = 1; i < size_; ++i) workers_.emplace_back([this] { workerLoop(); });
 }
 
 ThreadPool::~ThreadPool() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
+    generation_.fetch_add(1, std::memory_order_release);
   }
   wake_.notify_all();
   for (auto& t : workers_) t.join();
 }
 
-void ThreadPool::doPart(int part) {
-  const long b = static_cast<long>(n_) * part / parts_;
-  const long e = static_cast<long>(n_) * (part + 1) / parts_;
-  job_(ctx_, static_cast<int>(b), static_cast<int>(e));
+void ThreadPool::takeChunks() {
+  for (;;) {
+    const int c = next_chunk_.fetch_add(1, std::memory_order_relaxed);
+    if (c >= chunks_) return;
+    const long b = static_cast<long>(n_) * c / chunks_;
+    const long e = static_cast<long>(n_) * (c + 1) / chunks_;
+    job_(ctx_, static_cast<int>(b), static_cast<int>(e));
+  }
 }
 
-void ThreadPool::run(int parts, int n, Job job, void* ctx) {
+void ThreadPool::run(int n, Job job, void* ctx) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     job_ = job;
     ctx_ = ctx;
-    parts_ = parts;
     n_ = n;
-    remaining_.store(parts - 1, std::memory_order_relaxed);
-    ++generation_;
+    chunks_ = n < size_ * kChunksPerThread ? n : size_ * kChunksPerThread;
+    next_chunk_.store(0, std::memory_order_relaxed);
+    busy_workers_.store(size_ - 1, std::memory_order_relaxed);
+    generation_.fetch_add(1, std::memory_order_release);
   }
   wake_.notify_all();
-  doPart(0);
-  // Short spin first: the other parts usually finish within microseconds.
-  for (int i = 0; i < 20000 && remaining_.load(std::memory_order_acquire) > 0; ++i) {
-#if defined(__x86_64__)
-    __builtin_ia32_pause();
-#endif
-  }
-  if (remaining_.load(std::memory_order_acquire) > 0) {
+  takeChunks();
+  // Every worker must have left the job before the next one is posted; they
+  // are usually done within microseconds.
+  for (int i = 0; i < 20000 && busy_workers_.load(std::memory_order_acquire) > 0; ++i) cpuRelax();
+  if (busy_workers_.load(std::memory_order_acquire) > 0) {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_cv_.wait(lock, [this] { return remaining_.load(std::memory_order_acquire) == 0; });
+    done_cv_.wait(lock, [this] { return busy_workers_.load(std::memory_order_acquire) == 0; });
   }
 }
 
-void ThreadPool::workerLoop(int index) {
+void ThreadPool::workerLoop() {
   unsigned long seen = 0;
   for (;;) {
+    unsigned long g = generation_.load(std::memory_order_acquire);
+    if (g == seen) {
+      const auto until = std::chrono::steady_clock::now() + kSpinAfterJob;
+      for (int i = 1; g == seen; ++i) {
+        cpuRelax();
+        g = generation_.load(std::memory_order_acquire);
+        if (i % 64 == 0 && std::chrono::steady_clock::now() > until) break;
+      }
+    }
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      wake_.wait(lock, [&] { return stop_ || generation_.load(std::memory_order_relaxed) != seen; });
       if (stop_) return;
-      seen = generation_;
+      seen = generation_.load(std::memory_order_relaxed);
     }
-    if (index < parts_) {
-      doPart(index);
-      if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        done_cv_.notify_all();
-      }
+    takeChunks();
+    if (busy_workers_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_cv_.notify_all();
     }
   }
 }

@@ -20,37 +20,40 @@ class ThreadPool {
 
   int size() const { return size_; }
 
-  // Calls fn(begin, end) on disjoint ranges covering [0, n), one range per
-  // thread (the caller takes one). Blocks until every range is done.
+  // Calls fn(begin, end) on disjoint, contiguous ranges covering [0, n)
+  // (a few per thread, taken by whichever thread is free, so a core that is
+  // busy elsewhere does not hold the stage up). Blocks until every range is
+  // done. With n <= size() each range is a single index.
   template <class F>
   void parallelFor(int n, F&& fn) {
     if (n <= 0) return;
-    const int parts = n < size_ ? n : size_;
-    if (parts == 1) {
+    if (size_ == 1 || n == 1) {
       fn(0, n);
       return;
     }
     auto* f = &fn;
-    run(parts, n, [](void* ctx, int b, int e) { (*static_cast<decltype(f)>(ctx))(b, e); }, f);
+    run(n, [](void* ctx, int b, int e) { (*static_cast<decltype(f)>(ctx))(b, e); }, f);
   }
 
  private:
   using Job = void (*)(void*, int, int);
-  void run(int parts, int n, Job job, void* ctx);
-  void workerLoop(int index);
-  void doPart(int part);
+  void run(int n, Job job, void* ctx);
+  void workerLoop();
+  void takeChunks();
 
   int size_ = 1;
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_cv_;
-  // Current job; generation_ changes when a new one is posted.
+  // Current job; generation_ changes when a new one is posted (under mutex_,
+  // read without it by workers that are still spinning).
   Job job_ = nullptr;
   void* ctx_ = nullptr;
-  int parts_ = 0, n_ = 0;
-  unsigned long generation_ = 0;
-  std::atomic<int> remaining_{0};
+  int chunks_ = 0, n_ = 0;
+  std::atomic<unsigned long> generation_{0};
+  std::atomic<int> next_chunk_{0};
+  std::atomic<int> busy_workers_{0};  // workers not yet done with the current job
   bool stop_ = false;
 };
 

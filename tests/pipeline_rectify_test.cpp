@@ -1,0 +1,109 @@
+// Alternative paths of the CPU pipeline that must not change a bit: a camera
+// turned by 90 degrees reads the chroma samples from a transposed copy; the
+// quadrant score sums the table's columns band by band.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "pipeline/bayer_subsample.h"
+#include "pipeline/kernels.h"
+#include "pipeline/remap_table.h"
+#include "pipeline/score_windows.h"
+#include "pipeline/thread_pool.h"
+#include "pipeline_test_scene.h"
+
+namespace dv {
+namespace {
+
+// 640x480 Bayer camera 2 m above the plane, image x along field y: grid rows
+// (field x) run down image columns.
+CameraModel turnedCamera() {
+  Eigen::Matrix3d r;
+  r << 0, 1, 0, 1, 0, 0, 0, 0, -1;
+  auto calib = CameraCalibration::fromPose(0, 1000, 319.5, 239.5, 0, r, Eigen::Vector3d(1000, 500, 2150));
+  calib.image_width = 640;
+  calib.image_height = 480;
+  return CameraModel(calib);
+}
+
+TEST(PipelineRectify, TransposedSamplesGiveBitIdenticalChroma) {
+  const auto cam = turnedCamera();
+  test::PaintedScene scene;
+  const test::Color sides[4] = {test::kPink, test::kGreen, test::kGreen, test::kPink};
+  test::addRobot(scene, {900.3, 560.7}, 0.7, test::kBlue, sides);
+  scene.discs.push_back({{1150.4, 400.6}, 21.5, test::kOrange});
+  scene.noise_sigma = 2;
+  const cv::Mat raw = scene.render(cam, BayerPattern::GRBG);
+  PipelineOptions opt;
+  const RectifiedGrid grid = checkedGrid(cam, FieldModel::divisionB(), opt);
+  ThreadPool pool(1);
+  RemapTable table;
+  table.build(cam, grid, opt.plane_height, SampleLattice{2, 0.5}, pool);
+  ASSERT_TRUE(table.runsAlongColumns());
+  const int stride = table.src_height + 16;
+  const RemapTable table_t = table.transposed(stride);
+
+  ChromaFixed k{};
+  const auto t = ChromaTransform::of(ColorSpace::DRGB);
+  for (int c = 0; c < 3; ++c) k.a[c] = static_cast<int>(std::lround(t.a[c] * 1024)), k.b[c] = static_cast<int>(std::lround(t.b[c] * 1024));
+  const int ws = raw.cols / 2, hs = raw.rows / 2;
+  std::vector<uint32_t> packed(static_cast<size_t>(ws) * hs, 0), packed_t(static_cast<size_t>(ws) * stride, 0);
+  bayerChromaRows(raw, BayerPattern::GRBG, k, packed.data(), table.y_begin, table.y_end, table.x_begin, table.x_end);
+  // In two row ranges, as the thread pool splits it (the second not a
+  // multiple of the transposer's block).
+  const int mid = table.y_begin + 37;
+  bayerChromaRowsTransposed(raw, BayerPattern::GRBG, k, packed_t.data(), stride, table.y_begin, mid,
+                            table.x_begin, table.x_end);
+  bayerChromaRowsTransposed(raw, BayerPattern::GRBG, k, packed_t.data(), stride, mid, table.y_end,
+                            table.x_begin, table.x_end);
+  long moved = 0;
+  for (int j = table.y_begin; j < table.y_end; ++j)
+    for (int i = table.x_begin; i < table.x_end; ++i)
+      moved += packed_t[static_cast<size_t>(i) * stride + j] != packed[static_cast<size_t>(j) * ws + i];
+  EXPECT_EQ(moved, 0);
+
+  const size_t cells = static_cast<size_t>(grid.width) * grid.height;
+  std::vector<float> ca(cells), cb(cells), ca_t(cells), cb_t(cells);
+  rectifyChromaRows(table, packed.data(), 0.01f, ca.data(), cb.data(), 0, grid.height);
+  rectifyChromaRows(table_t, packed_t.data(), 0.01f, ca_t.data(), cb_t.data(), 0, grid.height);
+  EXPECT_TRUE(ca == ca_t && cb == cb_t) << "integer interpolation must not depend on the sample order";
+  float spread = 0;
+  for (float v : ca) spread = std::max(spread, std::abs(v));
+  EXPECT_GT(spread, 0.05f);  // the scene's colors reached the planes
+}
+
+TEST(PipelineRectify, TopDownCameraKeepsTheImageOrder) {
+  const auto cam = test::topDownCamera(1000, 500, 150 + 2000, 1000, 640, 480);
+  PipelineOptions opt;
+  ThreadPool pool(1);
+  RemapTable table;
+  table.build(cam, checkedGrid(cam, FieldModel::divisionB(), opt), opt.plane_height, SampleLattice{2, 0.5}, pool);
+  EXPECT_FALSE(table.runsAlongColumns());
+}
+
+TEST(PipelineScore, BandsSummingTheirOwnColumnsGiveTheFullTableScore) {
+  const int w = 157, h = 123, r = 5, q = 2;
+  std::mt19937 rng(7);
+  // Gradient products of both signs, large enough that the table wraps.
+  std::uniform_int_distribution<int32_t> g_dist(-40000000, 60000000);
+  std::vector<int32_t> g(static_cast<size_t>(w) * h);
+  for (auto& v : g) v = g_dist(rng);
+  std::vector<uint32_t> sat((w + 1ull) * (h + 1ull), 0);
+  satRowPrefixRows(g.data(), w, h, sat.data(), 0, h);
+  const std::vector<uint32_t> row_prefix = sat;
+  satColumnPrefix(sat.data(), w, h, 0, w + 1);
+  std::vector<float> full(g.size(), -1), banded(g.size(), -1);
+  quadrantMinScoreRows(sat.data(), w, h, r, q, full.data(), 0, h);
+  std::vector<uint32_t> ring;
+  for (int b : {0, 3, 40, 41, 90})  // bands of every size, one inside the border
+    quadrantMinScoreFromRowPrefix(row_prefix.data(), w, h, r, q, banded.data(), b,
+                                  b == 90 ? h : (b == 0 ? 3 : b == 3 ? 40 : b == 40 ? 41 : 90), ring);
+  EXPECT_TRUE(full == banded);
+  float top = 0;
+  for (float v : full) top = std::max(top, v);
+  EXPECT_GT(top, 0.0f);
+}
+
+}  // namespace
+}  // namespace dv
