@@ -82,7 +82,7 @@ TEST(PipelineRectify, TopDownCameraKeepsTheImageOrder) {
   EXPECT_FALSE(table.runsAlongColumns());
 }
 
-TEST(PipelineScore, BandsSummingTheirOwnColumnsGiveTheFullTableScore) {
+TEST(PipelineScore, BandsMakingTheirOwnTableRowsGiveTheFullTableScore) {
   const int w = 157, h = 123, r = 5, q = 2;
   std::mt19937 rng(7);
   // Gradient products of both signs, large enough that the table wraps.
@@ -91,13 +91,12 @@ TEST(PipelineScore, BandsSummingTheirOwnColumnsGiveTheFullTableScore) {
   for (auto& v : g) v = g_dist(rng);
   std::vector<uint32_t> sat((w + 1ull) * (h + 1ull), 0);
   satRowPrefixRows(g.data(), w, h, sat.data(), 0, h);
-  const std::vector<uint32_t> row_prefix = sat;
   satColumnPrefix(sat.data(), w, h, 0, w + 1);
   std::vector<float> full(g.size(), -1), banded(g.size(), -1);
   quadrantMinScoreRows(sat.data(), w, h, r, q, full.data(), 0, h);
   std::vector<uint32_t> ring;
   for (int b : {0, 3, 40, 41, 90})  // bands of every size, one inside the border
-    quadrantMinScoreFromRowPrefix(row_prefix.data(), w, h, r, q, banded.data(), b,
+    quadrantMinScoreFromGradient(g.data(), w, h, r, q, banded.data(), b,
                                   b == 90 ? h : (b == 0 ? 3 : b == 3 ? 40 : b == 40 ? 41 : 90), ring);
   EXPECT_TRUE(full == banded);
   float top = 0;

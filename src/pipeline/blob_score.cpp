@@ -62,8 +62,8 @@ void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int
   }
 }
 
-void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
-                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch) {
+void quadrantMinScoreFromGradient(const int32_t* g, int width, int height, int r, int q, float* score,
+                                  int y_begin, int y_end, std::vector<uint32_t>& scratch) {
   const size_t stride = static_cast<size_t>(width) + 1;
   const float norm = quadrantNorm(r, q);
   const int m = r + 1;
@@ -74,12 +74,14 @@ void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int he
   // Column sums from table row t0 = first - r on (zero there), in a ring of
   // 2r + 1 rows: the band's own origin, so bands need nothing from each other.
   const int rows = 2 * r + 1;
-  scratch.resize(static_cast<size_t>(rows) * stride);  // no-op after the first frame
+  scratch.resize(static_cast<size_t>(rows + 1) * stride);  // no-op after the first frame
   auto ring = [&](int t) { return scratch.data() + static_cast<size_t>(t % rows) * stride; };
+  uint32_t* prefix = scratch.data() + static_cast<size_t>(rows) * stride;
   const int t0 = first - r;
   std::memset(ring(t0), 0, sizeof(uint32_t) * stride);
   for (int t = t0 + 1; t <= last - 1 + r; ++t) {
-    addRow(ring(t - 1), row_prefix + static_cast<size_t>(t) * stride, static_cast<int>(stride), ring(t));
+    satRowPrefixRow(g, width, height, t - 1, prefix);  // table row t
+    addRow(ring(t - 1), prefix, static_cast<int>(stride), ring(t));
     const int y = t - r;  // all of rows y - r .. y + r are now in the ring
     if (y >= first)
       quadrantScoreRow(ring(y - r), ring(y - q), ring(y), ring(y + q), ring(y + r), width, r, q, norm,

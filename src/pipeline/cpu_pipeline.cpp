@@ -230,10 +230,11 @@ struct CpuPipeline::Impl {
     times.gradient_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
-    // Row prefix sums only: the quadrant score sums the columns itself, band
-    // by band, so the full table is never written out.
-    pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
+    // The circle score reads row prefix sums; the quadrant score makes its
+    // table rows itself, band by band (its time is in score_ms).
     const bool circle = opt.score == BlobScoreKind::CircleMin;
+    if (circle)
+      pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
     times.sat_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
@@ -244,7 +245,7 @@ struct CpuPipeline::Impl {
     } else {
       pool.parallelFor(gh, [&](int b, int e) {
         thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
-        quadrantMinScoreFromRowPrefix(sat.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e, ring);
+        quadrantMinScoreFromGradient(gdot.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e, ring);
       });
     }
     times.score_ms = msSince(t0);

@@ -62,6 +62,8 @@ float windowGradientEnergy(const float* ca, const float* cb, int width, double s
 // Pass 1: row prefix sums of rows [y_begin, y_end).
 void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, int y_begin,
                       int y_end);
+// Table row y + 1 of pass 1 (the prefix of box row y) into out[0..width].
+void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out);
 // Pass 2: column prefix over columns [x_begin, x_end) of the table.
 void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_end);
 
@@ -77,12 +79,12 @@ void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_en
 void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
                           int y_begin, int y_end);
 
-// The same scores from the row prefix table (pass 1 only): each band of rows
-// sums its columns from its own origin r rows above it, in a ring of 2r + 1
-// rows (`scratch`, sized on first use), so the full table is never written
-// or read back. Equal to quadrantMinScoreRows bit for bit.
-void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
-                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
+// The same scores straight from G: each band of rows makes its table rows
+// (pass 1) and sums their columns from its own origin r rows above it, in a
+// ring of 2r + 1 rows (`scratch`, sized on first use), so no table is
+// written out or read back. Equal to quadrantMinScoreRows bit for bit.
+void quadrantMinScoreFromGradient(const int32_t* g, int width, int height, int r, int q, float* score,
+                                  int y_begin, int y_end, std::vector<uint32_t>& scratch);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

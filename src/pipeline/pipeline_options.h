@@ -32,7 +32,8 @@ struct PipelineOptions {
 // Wall time of each stage of the last frame, milliseconds. bayer_ms includes
 // the chroma conversion (done on the subsampled samples, since it is linear);
 // color_ms is only the frame brightness statistic; sat_ms is the row prefix
-// pass (score_ms includes the column sums of the quadrant score); peaks_ms includes the ratio test, interpolation and blob colors.
+// pass of the circle score (the quadrant score makes its own table rows, in
+// score_ms); peaks_ms includes the ratio test, interpolation and blob colors.
 struct StageTimes {
   double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
          peaks_ms = 0, total_ms = 0;
