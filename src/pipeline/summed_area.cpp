@@ -51,18 +51,21 @@ __attribute__((target("avx2"))) void boxPrefixAvx2(const int32_t* r0, const int3
 
 }  // namespace
 
-void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out) {
+void boxRowPrefix(const int32_t* r0, const int32_t* r1, int width, uint32_t* out) {
   out[0] = 0;
-  if (y + 1 >= height) {  // the last row has no 2x2 box
-    for (int x = 0; x < width; ++x) out[x + 1] = 0;
-    return;
-  }
-  const int32_t* r0 = g + static_cast<size_t>(y) * width;
-  const int32_t* r1 = r0 + width;
 #if defined(__x86_64__)
   if (cpuHasAvx2()) return boxPrefixAvx2(r0, r1, width, out);
 #endif
   out[width] = boxPrefixScalar(r0, r1, 0, width, 0, out);
+}
+
+void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out) {
+  if (y + 1 >= height) {  // the last row has no 2x2 box
+    for (int x = 0; x <= width; ++x) out[x] = 0;
+    return;
+  }
+  const int32_t* r0 = g + static_cast<size_t>(y) * width;
+  boxRowPrefix(r0, r0 + width, width, out);
 }
 
 void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, int y_begin,
