@@ -82,23 +82,26 @@ TEST(PipelineRectify, TopDownCameraKeepsTheImageOrder) {
   EXPECT_FALSE(table.runsAlongColumns());
 }
 
-TEST(PipelineScore, BandsSummingTheirOwnColumnsGiveTheFullTableScore) {
+TEST(PipelineScore, BandsMakingTheirOwnRowsGiveTheWholePlaneScore) {
   const int w = 157, h = 123, r = 5, q = 2;
+  const double scale = 5.0 / 3;  // fractional: both gradient taps in use
   std::mt19937 rng(7);
-  // Gradient products of both signs, large enough that the table wraps.
-  std::uniform_int_distribution<int32_t> g_dist(-40000000, 60000000);
-  std::vector<int32_t> g(static_cast<size_t>(w) * h);
-  for (auto& v : g) v = g_dist(rng);
+  // Chroma steps large enough that the table wraps.
+  std::uniform_real_distribution<float> c_dist(-30, 30);
+  std::vector<float> ca(static_cast<size_t>(w) * h), cb(ca.size());
+  for (auto& v : ca) v = c_dist(rng);
+  for (auto& v : cb) v = c_dist(rng);
+  std::vector<int32_t> g(ca.size());
+  gradientDotRows(ca.data(), cb.data(), w, h, scale, g.data(), 0, h);
   std::vector<uint32_t> sat((w + 1ull) * (h + 1ull), 0);
   satRowPrefixRows(g.data(), w, h, sat.data(), 0, h);
-  const std::vector<uint32_t> row_prefix = sat;
   satColumnPrefix(sat.data(), w, h, 0, w + 1);
   std::vector<float> full(g.size(), -1), banded(g.size(), -1);
   quadrantMinScoreRows(sat.data(), w, h, r, q, full.data(), 0, h);
   std::vector<uint32_t> ring;
-  for (int b : {0, 3, 40, 41, 90})  // bands of every size, one inside the border
-    quadrantMinScoreFromRowPrefix(row_prefix.data(), w, h, r, q, banded.data(), b,
-                                  b == 90 ? h : (b == 0 ? 3 : b == 3 ? 40 : b == 40 ? 41 : 90), ring);
+  const int bands[] = {0, 3, 40, 41, 90, h};  // every size, one inside the border
+  for (int i = 0; i + 1 < 6; ++i)
+    quadrantMinScoreFromChroma(ca.data(), cb.data(), w, h, scale, r, q, banded.data(), bands[i], bands[i + 1], ring);
   EXPECT_TRUE(full == banded);
   float top = 0;
   for (float v : full) top = std::max(top, v);

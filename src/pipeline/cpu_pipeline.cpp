@@ -239,17 +239,21 @@ struct CpuPipeline::Impl {
     });
     times.rectify_ms = msSince(t0);
 
+    // The circle score reads G and its row prefix sums from whole planes;
+    // the quadrant score makes its G and table rows itself, band by band
+    // (their time is in score_ms).
+    const bool circle = opt.score == BlobScoreKind::CircleMin;
     t0 = std::chrono::steady_clock::now();
-    pool.parallelFor(gh, [&](int b, int e) {
-      gradientDotRows(ca.data(), cb.data(), gw, gh, gradient_scale, gdot.data(), b, e);
-    });
+    if (circle) {
+      pool.parallelFor(gh, [&](int b, int e) {
+        gradientDotRows(ca.data(), cb.data(), gw, gh, gradient_scale, gdot.data(), b, e);
+      });
+    }
     times.gradient_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
-    // Row prefix sums only: the quadrant score sums the columns itself, band
-    // by band, so the full table is never written out.
-    pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
-    const bool circle = opt.score == BlobScoreKind::CircleMin;
+    if (circle)
+      pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
     times.sat_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
@@ -260,7 +264,8 @@ struct CpuPipeline::Impl {
     } else {
       pool.parallelFor(gh, [&](int b, int e) {
         thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
-        quadrantMinScoreFromRowPrefix(sat.data(), gw, gh, quadrant_r, inner_q, score.data(), b, e, ring);
+        quadrantMinScoreFromChroma(ca.data(), cb.data(), gw, gh, gradient_scale, quadrant_r, inner_q,
+                                   score.data(), b, e, ring);
       });
     }
     times.score_ms = msSince(t0);
@@ -418,17 +423,22 @@ cv::Mat signedView(const T* data, int w, int h, double full_scale) {
 
 cv::Mat CpuPipeline::debugGradient() const {
   const auto& m = *impl_;
+  // The quadrant score never writes G out: make it here (not a hot path).
+  std::vector<int32_t> gdot(m.gdot.size(), 0);
+  if (m.has_frame)
+    gradientDotRows(m.ca.data(), m.cb.data(), m.grid.width, m.grid.height, m.gradient_scale, gdot.data(), 0,
+                    m.grid.height);
   // Full scale at the 99.9th percentile of |G| so blobs stand out.
   std::vector<int32_t> mags;
-  mags.reserve(m.gdot.size() / 7 + 1);
-  for (size_t i = 0; i < m.gdot.size(); i += 7) mags.push_back(std::abs(m.gdot[i]));
+  mags.reserve(gdot.size() / 7 + 1);
+  for (size_t i = 0; i < gdot.size(); i += 7) mags.push_back(std::abs(gdot[i]));
   double full = 1;
   if (!mags.empty()) {
     auto it = mags.begin() + static_cast<long>(mags.size() * 0.999);
     std::nth_element(mags.begin(), it, mags.end());
     full = std::max(1, *it);
   }
-  return signedView(m.gdot.data(), m.grid.width, m.grid.height, full);
+  return signedView(gdot.data(), m.grid.width, m.grid.height, full);
 }
 
 cv::Mat CpuPipeline::debugScore() const {

@@ -6,37 +6,39 @@
 
 namespace dv {
 
-__attribute__((target_clones("avx2", "default"))) void gradientDotRows(
-    const float* ca, const float* cb, int width, int height, double scale, int32_t* g, int y_begin,
-    int y_end) {
+__attribute__((target_clones("avx2", "default"))) void gradientDotRow(
+    const float* ca, const float* cb, int width, int height, double scale, int y, int32_t* out) {
   // i(x + s) with s = k + a: linear between samples k and k + 1 away.
   const int k = static_cast<int>(std::floor(scale));
   const float a = static_cast<float>(scale - k), na = 1 - a;
   const int m = k + 1;  // reach of the gradient
-  for (int y = y_begin; y < y_end; ++y) {
-    int32_t* out = g + static_cast<size_t>(y) * width;
-    if (y < m || y >= height - m || width <= 2 * m) {
-      std::memset(out, 0, sizeof(int32_t) * width);
-      continue;
-    }
-    for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
-    const size_t w = width;
-    const float* a_rows[4] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + (y + k) * w,
-                              ca + (y + k + 1) * w};
-    const float* b_rows[4] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + (y + k) * w,
-                              cb + (y + k + 1) * w};
-    const float* a_mid = ca + y * w;
-    const float* b_mid = cb + y * w;
-    for (int x = m; x < width - m; ++x) {
-      const float gxa = na * (a_mid[x + k] - a_mid[x - k]) + a * (a_mid[x + k + 1] - a_mid[x - k - 1]);
-      const float gya = na * (a_rows[2][x] - a_rows[1][x]) + a * (a_rows[3][x] - a_rows[0][x]);
-      const float gxb = na * (b_mid[x + k] - b_mid[x - k]) + a * (b_mid[x + k + 1] - b_mid[x - k - 1]);
-      const float gyb = na * (b_rows[2][x] - b_rows[1][x]) + a * (b_rows[3][x] - b_rows[0][x]);
-      // Truncation (not lrintf, which the compiler will not vectorise);
-      // its bias toward zero is symmetric for both signs.
-      out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
-    }
+  if (y < m || y >= height - m || width <= 2 * m) {
+    std::memset(out, 0, sizeof(int32_t) * width);
+    return;
   }
+  for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
+  const size_t w = width;
+  const float* a_rows[4] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + (y + k) * w,
+                            ca + (y + k + 1) * w};
+  const float* b_rows[4] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + (y + k) * w,
+                            cb + (y + k + 1) * w};
+  const float* a_mid = ca + y * w;
+  const float* b_mid = cb + y * w;
+  for (int x = m; x < width - m; ++x) {
+    const float gxa = na * (a_mid[x + k] - a_mid[x - k]) + a * (a_mid[x + k + 1] - a_mid[x - k - 1]);
+    const float gya = na * (a_rows[2][x] - a_rows[1][x]) + a * (a_rows[3][x] - a_rows[0][x]);
+    const float gxb = na * (b_mid[x + k] - b_mid[x - k]) + a * (b_mid[x + k + 1] - b_mid[x - k - 1]);
+    const float gyb = na * (b_rows[2][x] - b_rows[1][x]) + a * (b_rows[3][x] - b_rows[0][x]);
+    // Truncation (not lrintf, which the compiler will not vectorise);
+    // its bias toward zero is symmetric for both signs.
+    out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
+  }
+}
+
+void gradientDotRows(const float* ca, const float* cb, int width, int height, double scale, int32_t* g,
+                     int y_begin, int y_end) {
+  for (int y = y_begin; y < y_end; ++y)
+    gradientDotRow(ca, cb, width, height, scale, y, g + static_cast<size_t>(y) * width);
 }
 
 __attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,

@@ -43,6 +43,9 @@ void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float ga
 constexpr float kGradientFixedPoint = 16384.0f;
 void gradientDotRows(const float* ca, const float* cb, int width, int height, double scale,
                      int32_t* g, int y_begin, int y_end);
+// Row y alone, into out[0..width).
+void gradientDotRow(const float* ca, const float* cb, int width, int height, double scale, int y,
+                    int32_t* out);
 
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
 // (x, y), same gradient as gradientDotRows. Used only at peak candidates.
@@ -62,6 +65,10 @@ float windowGradientEnergy(const float* ca, const float* cb, int width, double s
 // Pass 1: row prefix sums of rows [y_begin, y_end).
 void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, int y_begin,
                       int y_end);
+// Table row y + 1 of pass 1 (the prefix of box row y) into out[0..width].
+void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out);
+// The same from the two G rows of the box, r0 above r1.
+void boxRowPrefix(const int32_t* r0, const int32_t* r1, int width, uint32_t* out);
 // Pass 2: column prefix over columns [x_begin, x_end) of the table.
 void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_end);
 
@@ -77,12 +84,15 @@ void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_en
 void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int q, float* score,
                           int y_begin, int y_end);
 
-// The same scores from the row prefix table (pass 1 only): each band of rows
-// sums its columns from its own origin r rows above it, in a ring of 2r + 1
-// rows (`scratch`, sized on first use), so the full table is never written
-// or read back. Equal to quadrantMinScoreRows bit for bit.
-void quadrantMinScoreFromRowPrefix(const uint32_t* row_prefix, int width, int height, int r, int q,
-                                   float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
+// The same scores straight from the chroma planes: each band of rows makes
+// its G rows (gradientDotRow at `scale`), their table rows (pass 1) and
+// sums the columns from its own origin r rows above it, in a ring of
+// 2r + 1 rows (`scratch`, sized on first use), so neither G nor the table is
+// written out or read back. Equal to gradientDotRows, satRowPrefixRows,
+// satColumnPrefix and quadrantMinScoreRows in turn, bit for bit.
+void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int height, double scale,
+                                int r, int q, float* score, int y_begin, int y_end,
+                                std::vector<uint32_t>& scratch);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

@@ -38,8 +38,9 @@ struct PipelineOptions {
 
 // Wall time of each stage of the last frame, milliseconds. bayer_ms includes
 // the chroma conversion (done on the subsampled samples, since it is linear);
-// color_ms is only the frame brightness statistic; sat_ms is the row prefix
-// pass (score_ms includes the column sums of the quadrant score); peaks_ms includes the ratio test, interpolation and blob colors.
+// color_ms is only the frame brightness statistic; gradient_ms and sat_ms
+// (row prefix) are whole-plane passes of the circle score only (the quadrant
+// score makes its own G and table rows band by band, in score_ms); peaks_ms includes the ratio test, interpolation and blob colors.
 struct StageTimes {
   double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
          peaks_ms = 0, total_ms = 0;

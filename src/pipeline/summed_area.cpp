@@ -51,26 +51,27 @@ __attribute__((target("avx2"))) void boxPrefixAvx2(const int32_t* r0, const int3
 
 }  // namespace
 
+void boxRowPrefix(const int32_t* r0, const int32_t* r1, int width, uint32_t* out) {
+  out[0] = 0;
+#if defined(__x86_64__)
+  if (cpuHasAvx2()) return boxPrefixAvx2(r0, r1, width, out);
+#endif
+  out[width] = boxPrefixScalar(r0, r1, 0, width, 0, out);
+}
+
+void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out) {
+  if (y + 1 >= height) {  // the last row has no 2x2 box
+    for (int x = 0; x <= width; ++x) out[x] = 0;
+    return;
+  }
+  const int32_t* r0 = g + static_cast<size_t>(y) * width;
+  boxRowPrefix(r0, r0 + width, width, out);
+}
+
 void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, int y_begin,
                       int y_end) {
   const size_t stride = static_cast<size_t>(width) + 1;
-  for (int y = y_begin; y < y_end; ++y) {
-    uint32_t* out = sat + (y + 1) * stride;
-    out[0] = 0;
-    if (y + 1 >= height) {  // the last row has no 2x2 box
-      for (int x = 0; x < width; ++x) out[x + 1] = 0;
-      continue;
-    }
-    const int32_t* r0 = g + static_cast<size_t>(y) * width;
-    const int32_t* r1 = r0 + width;
-#if defined(__x86_64__)
-    if (cpuHasAvx2()) {
-      boxPrefixAvx2(r0, r1, width, out);
-      continue;
-    }
-#endif
-    out[width] = boxPrefixScalar(r0, r1, 0, width, 0, out);
-  }
+  for (int y = y_begin; y < y_end; ++y) satRowPrefixRow(g, width, height, y, sat + (y + 1) * stride);
 }
 
 __attribute__((target_clones("avx2", "default"))) void satColumnPrefix(uint32_t* sat, int width,
