@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -79,9 +80,21 @@ TEST(SceneCli, OutsiderSceneThroughSynthRunEvalAgreesWithTheLibrary) {
   const std::string common = " --geometry '" + scene + "/geometry.json' --camera-id 3 --no-publish --jsonl ";
   // A synth directory holds .pgm and .png; the directory source takes the raw
   // mosaic, a glob the PNGs.
+  const fs::path log_right = dir / "right.err", log_wrong = dir / "wrong.err";
   ASSERT_EQ(shell(cli + "run --source '" + scene + "' --bayer grbg" + common + "'" +
-                  (dir / "pgm.jsonl").string() + "' >/dev/null"),
+                  (dir / "pgm.jsonl").string() + "' >/dev/null 2>'" + log_right.string() + "'"),
             0);
+  // The same mosaic with the default layout (rggb): colors are swapped, and
+  // the run says which layouts the frame looks like.
+  ASSERT_EQ(shell(cli + "run --source '" + scene + "' --max-frames 1" + common + "'" +
+                  (dir / "wrong.jsonl").string() + "' >/dev/null 2>'" + log_wrong.string() + "'"),
+            0);
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(slurp(log_right).find("layout"), std::string::npos) << slurp(log_right);
+  EXPECT_NE(slurp(log_wrong).find("probably grbg or gbrg"), std::string::npos) << slurp(log_wrong);
   ASSERT_EQ(shell(cli + "run --source '" + scene + "/*.png'" + common + "'" +
                   (dir / "png.jsonl").string() + "' >/dev/null"),
             0);

@@ -26,6 +26,7 @@
 #include "io/frame_source.h"
 #include "io/ssl_log.h"
 #include "net/vision_publisher.h"
+#include "pipeline/bayer_layout_check.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
@@ -209,6 +210,10 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
     std::printf("dotvision run: camera %u: %s\n", ch.calibration.camera_id,
                 ch.processor->pipeline().samplingNote().c_str());
     std::fflush(stdout);
+    const std::string layout = bayerLayoutWarning(frame.image, o.pipeline.bayer);
+    if (!layout.empty())
+      std::fprintf(stderr, "dotvision run: warning: camera %u, %s: %s\n", ch.calibration.camera_id,
+                   frame.name.c_str(), layout.c_str());
     const size_t expect = static_cast<size_t>(s.args.max_frames > 0 ? s.args.max_frames : 4096);
     ch.pipeline_ms.reserve(expect);
     ch.detection_ms.reserve(expect);
@@ -260,6 +265,8 @@ void printSummary(const RunState& s, const std::string& what, const std::vector<
       std::printf("  camera %u: backend %s\n", c.calibration.camera_id, c.processor->pipeline().name().c_str());
   std::printf("  detections: %ld robots (%.2f per frame), %ld balls (%.2f per frame)\n", robots,
               robots * per, balls, balls * per);
+  if (processed > 0 && robots == 0 && balls == 0)
+    std::printf("  nothing was detected: check --bayer, the geometry and --camera-id\n");
   if (!total.empty()) {
     std::printf("  time per frame: pipeline median %.2f ms, detection median %.2f ms, "
                 "total median %.2f ms, p99 %.2f ms\n",
