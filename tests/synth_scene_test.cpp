@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -231,6 +232,25 @@ TEST(SynthScene, UnknownPresetListsTheKnownOnes) {
     EXPECT_EQ(e.source(), "preset");
     EXPECT_NE(msg.find("unknown preset 'top_down_div_z'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("top_down_div_b_half"), std::string::npos) << msg;
+  }
+}
+
+// The presets are built into the binary: the same scenes as the YAML files
+// of the source tree, with no file read.
+TEST(SynthScene, EmbeddedPresetsMatchTheSourceFiles) {
+  const std::filesystem::path dir = std::filesystem::path(DV_SOURCE_DIR) / "config" / "scenes";
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".yaml") files.push_back(e.path().stem().string());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(presetNames(), files);
+  for (const auto& n : files) {
+    SCOPED_TRACE(n);
+    const SceneSpec built_in = presetScene(n);
+    const SceneSpec from_file = loadScene((dir / (n + ".yaml")).string());
+    EXPECT_EQ(built_in.robots.size(), from_file.robots.size());
+    EXPECT_EQ(built_in.seed, from_file.seed);
+    EXPECT_EQ(built_in.cameras.size(), from_file.cameras.size());
   }
 }
 

@@ -144,8 +144,8 @@ SceneSpec sceneFromYaml(const std::string& text, const std::string& source);
 // InputError("preset", "unknown preset 'x' (known: ...)").
 SceneSpec presetScene(const std::string& name);
 std::vector<std::string> presetNames();
-// Where the presets are read from: $DV_SCENES_DIR, else config/scenes of the
-// source tree this library was built from.
+// Where the presets are read from: $DV_SCENES_DIR when set, else empty: the
+// copies of config/scenes/*.yaml built into the binary.
 std::string presetDirectory();
 
 // The built-in scene `dotvision run` uses when no camera is configured: one

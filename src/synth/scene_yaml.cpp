@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "synth/embedded_scenes.h"
 #include "synth/scene.h"
 
 namespace dv {
@@ -508,31 +509,38 @@ SceneSpec loadScene(const std::string& path) {
 
 std::string presetDirectory() {
   if (const char* env = std::getenv("DV_SCENES_DIR"); env && *env) return env;
-  // This file lives in <source>/src/synth/; the presets in <source>/config/scenes.
-  return (std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "config" /
-          "scenes")
-      .lexically_normal()
-      .string();
+  return {};
 }
 
 std::vector<std::string> presetNames() {
   std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(presetDirectory(), ec))
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  const std::string dir = presetDirectory();
+  if (dir.empty()) {
+    for (int i = 0; i < embeddedSceneCount(); ++i)
+      names.push_back(std::filesystem::path(embeddedScenes()[i].name).stem().string());
+  } else {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+      if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
   std::sort(names.begin(), names.end());
   return names;
 }
 
 SceneSpec presetScene(const std::string& name) {
   const auto names = presetNames();
+  const std::string dir = presetDirectory();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    if (names.empty()) list = "none found in " + presetDirectory();
+    if (names.empty()) list = "none found in " + dir;
     throw InputError("preset", "unknown preset '" + name + "' (known: " + list + ")");
   }
-  return loadScene((std::filesystem::path(presetDirectory()) / (name + ".yaml")).string());
+  if (!dir.empty()) return loadScene((std::filesystem::path(dir) / (name + ".yaml")).string());
+  for (int i = 0; i < embeddedSceneCount(); ++i)
+    if (embeddedScenes()[i].name == name + ".yaml")
+      return sceneFromYaml(embeddedScenes()[i].text, "preset " + name);
+  throw InputError("preset", "unknown preset '" + name + "'");  // not reached: listed above
 }
 
 }  // namespace dv

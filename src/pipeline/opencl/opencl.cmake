@@ -11,8 +11,9 @@ set(DV_EMBEDDED_KERNELS_CPP ${PROJECT_BINARY_DIR}/kernels/embedded_kernels.cpp)
 add_custom_command(OUTPUT ${DV_EMBEDDED_KERNELS_CPP}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/kernels
   COMMAND ${CMAKE_COMMAND} -DOUT=${DV_EMBEDDED_KERNELS_CPP} -DFILES=${DV_KERNEL_FILES_ARG}
-          -P ${PROJECT_SOURCE_DIR}/kernels/embed_kernels.cmake
-  DEPENDS ${DV_KERNEL_FILES} ${PROJECT_SOURCE_DIR}/kernels/embed_kernels.cmake
+          -DHEADER=pipeline/opencl/embedded_kernels.h -DNAME=Kernel
+          -P ${PROJECT_SOURCE_DIR}/cmake/embed_text_files.cmake
+  DEPENDS ${DV_KERNEL_FILES} ${PROJECT_SOURCE_DIR}/cmake/embed_text_files.cmake
   COMMENT "Embedding OpenCL kernels" VERBATIM)
 target_sources(dv_pipeline PRIVATE ${DV_EMBEDDED_KERNELS_CPP})
 target_compile_definitions(dv_pipeline PUBLIC CL_TARGET_OPENCL_VERSION=120)
