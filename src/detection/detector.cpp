@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "detection/blob_index.h"
+#include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
 
@@ -32,6 +33,7 @@ struct FrameBlob {
   FieldMm at_team[2]; // at the yellow / blue robot height
   FieldMm at_ball;    // at the ball center height
   ColorVec color;
+  float rgb[3] = {0, 0, 0};
   float score = 0;
   bool valid = false;
   int robot = -1;  // accepted robot using this blob
@@ -197,6 +199,7 @@ struct Detector::Impl {
                 alongRay(b.position, z0, opt.ball_radius, f.at_ball) &&
                 std::isfinite(b.position.x) && std::isfinite(b.position.y);
       f.color = colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]);
+      for (int c = 0; c < 3; ++c) f.rgb[c] = b.rgb[c];
       f.score = b.score;
       blobs.push_back(f);
       // Invalid blobs are put far away so that no query finds them.
@@ -734,12 +737,16 @@ struct Detector::Impl {
       if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
           p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
         continue;
-      float d_or = colorDistance(b.color, orange);
-      if (color_map.valid()) d_or = std::min(d_or, colorDistance(b.color, mapped_orange));
+      // Against every class, the blob counts with the colors it may have
+      // had before a channel clipped (an overexposed ball looks yellowish).
+      const ClippedColor seen(b.rgb);
+      if (seen.saturated()) continue;
+      float d_or = seen.distance(orange);
+      if (color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange));
       float d_neg = std::numeric_limits<float>::max();
       int nearest_neg = kField;
       for (int k : negatives) {
-        const float d = colorDistance(b.color, frame_color[k]);
+        const float d = seen.distance(frame_color[k]);
         if (d < d_neg) d_neg = d, nearest_neg = k;
       }
       if (d_or >= d_neg) {
