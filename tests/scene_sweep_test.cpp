@@ -245,7 +245,7 @@ void printRow(const char* name, const char* res, const SceneScore& s) {
 class SceneSweep : public ::testing::TestWithParam<size_t> {};
 
 // Columns: robots, recall, precision, id accuracy, recall of robots whose
-// center and 3+ side blobs reached the detector, id accuracy of robots with
+// center and 4 side blobs reached the detector, id accuracy of robots with
 // all 4 side blobs, balls, ball recall, ball precision.
 TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
   const Condition& c = conditions()[GetParam()];
@@ -276,8 +276,13 @@ TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
     // blobs. At 1224 x 1024 a Bayer cell is 11.4 mm and green side blobs,
     // which meet the green carpet at the robot's rim, fall below the blob
     // threshold about 12 % of the time (pink: 1 %); a robot missing two is
-    // lost and one missing one gets a guessed id.
-    EXPECT_GE(s.recall(), half ? 0.75 : 0.95);
+    // lost, and one missing one is reported only where a fully seen
+    // teammate holds one of its two possible ids (a guess was right 7 times
+    // in 14 over the sweep). Pale colors also lose the pale pink blobs
+    // (0.53 over the 4 placements; 0.77 with guesses reported, of which
+    // only the same 0.53 had the right id).
+    const bool pale = name == "colors_pale";
+    EXPECT_GE(s.recall(), half ? (pale ? 0.5 : 0.75) : 0.95);
   }
 }
 

@@ -51,6 +51,9 @@ struct Hypothesis {
   int track = -1;
   std::array<MarkerColor, 4> colors{};  // side colors, valid where seen
   uint8_t seen_sides = 0;               // bit s-1 set: slot s was seen
+  // The id was seen whole, follows from the ids others hold, or comes from
+  // a track that once saw the robot whole.
+  bool id_known = false;
   bool fullPattern() const { return seen_sides == 0xF; }
 };
 
@@ -417,8 +420,9 @@ struct Detector::Impl {
       r.id = patternId(colors);
     }
     // A robot missing a side blob has two possible ids; ids are unique per
-    // team, so prefer the one no fully seen robot of its team holds.
+    // team, so when a fully seen robot of its team holds one, it is the other.
     for (auto& r : robots) {
+      r.id_known = r.fullPattern();
       if (r.fullPattern() || r.n != 4) continue;
       int missing = 0;
       while (r.seen_sides >> missing & 1) ++missing;
@@ -430,7 +434,9 @@ struct Detector::Impl {
           if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
         return false;
       };
-      if (taken(r.id) && !taken(alt_id)) r.id = alt_id, r.colors = alt;
+      const bool green_taken = taken(r.id), pink_taken = taken(alt_id);
+      if (green_taken && !pink_taken) r.id = alt_id, r.colors = alt;
+      r.id_known = green_taken != pink_taken;
     }
 
     // How this camera shows the pattern colors tells where its orange is.
@@ -668,6 +674,7 @@ struct Detector::Impl {
       const int k = track_match[r];
       if (k < 0) continue;
       if (r < fresh) applyIdentity(tracks[k], robots[r]);
+      if (tracks[k].id_certain) robots[r].id_known = true;
       updateTrack(tracks[k], robots[r], t);
     }
     // Drop tracks this frame did not confirm, then start new ones.
@@ -893,6 +900,9 @@ struct Detector::Impl {
     findBalls(t, opt.tracking, out);
 
     for (const auto& r : robots) {
+      // The league's protocol has no unknown id, and a wrong one counts as
+      // a false robot and a missed one: a guessed id is not reported.
+      if (!r.id_known && !opt.report_guessed_ids) continue;
       RobotDetection d;
       d.team = r.team;
       d.id = r.id;
