@@ -23,12 +23,17 @@ TEST(ClippedColor, OverexposedOrangeIsNearerOrangeThanYellow) {
   EXPECT_GT(c.distance(yellow), 3 * c.distance(orange));
 }
 
-TEST(ClippedColor, ClippedYellowAndPinkStayTheirOwnClass) {
-  const ColorVec orange = feature(255, 120, 20);
-  const float yellow[3] = {255, 255, 64}, pink[3] = {255, 144, 255};
-  const ClippedColor y(yellow), p(pink);
-  EXPECT_LT(y.distance(feature(255, 255, 64)), y.distance(orange));
-  EXPECT_GT(p.distance(orange), 40.f);
+TEST(ClippedColor, TwoClippedChannelsSayTooLittle) {
+  // A yellow center in a sun patch: red and green clipped. Free to grow,
+  // they would reach orange (the ghost ball of the uneven-light preset).
+  const float yellow[3] = {255, 255, 71}, pink[3] = {255, 144, 255};
+  EXPECT_TRUE(ClippedColor(yellow).saturated());
+  EXPECT_TRUE(ClippedColor(pink).saturated());
+  // One clipped channel: a clipped pink stays far from orange.
+  const float pink_r[3] = {250, 110, 200};
+  const ClippedColor p(pink_r);
+  ASSERT_FALSE(p.saturated());
+  EXPECT_GT(p.distance(feature(255, 120, 20)), 40.f);
 }
 
 TEST(ClippedColor, UnclippedIsThePlainDistanceAndWhiteSaysNothing) {
