@@ -65,6 +65,30 @@ TEST(DetectionTracking, RecoversARobotSeenWithTwoBlobs) {
   }
 }
 
+// A robot missing a side blob has one of two ids. Alone it is not reported
+// (a wrong id is a false robot); a track that saw it whole knows which.
+TEST(DetectionTracking, ATrackThatSawTheRobotWholeReportsItWithASideBlobMissing) {
+  const CameraModel cam(test::topDownCamera());
+  // Id 6's pink blob (the missing one read as green would give another id).
+  const auto colors = patternColors(6);
+  int pink = 0;
+  while (colors[pink] != MarkerColor::Pink) ++pink;
+  std::array<bool, 5> present = {true, true, true, true, true};
+  present[1 + pink] = false;
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 3; ++f) det.process(frameWith(cam, f, {movingRobot(f)}), f * kDt, out);
+  const TrueRobot partial = movingRobot(3, present);
+  det.process(frameWith(cam, 3, {partial}), 3 * kDt, out);
+  const RobotDetection* r = findNear(out, partial.position);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->id, 6);
+  // Without history the id stays a guess and is not reported.
+  Detector alone(cam, FieldModel::divisionB(), DetectorOptions{});
+  alone.process(frameWith(cam, 3, {partial}), 3 * kDt, out);
+  EXPECT_EQ(findNear(out, partial.position), nullptr);
+}
+
 TEST(DetectionTracking, ResetForgetsHistory) {
   const CameraModel cam(test::topDownCamera());
   Detector det(cam, FieldModel::divisionB(), DetectorOptions{});

@@ -21,8 +21,9 @@ namespace dv::test {
 struct SceneScore {
   int truth_robots = 0, matched = 0, id_ok = 0, detected = 0;
   int truth_balls = 0, balls_matched = 0, balls_detected = 0;
-  // Objects whose blobs reached the detector (center + 3 sides for robots,
-  // a blob for the ball): what blob assignment alone can be held to.
+  // Objects whose blobs reached the detector (center + 4 sides for robots:
+  // with 3 the id is one of two and a guess is not reported; a blob for the
+  // ball): what blob assignment alone can be held to.
   int detectable_robots = 0, detectable_matched = 0, detectable_balls = 0,
       detectable_balls_matched = 0;
   // Robots whose center and all four side blobs reached the detector, and
@@ -133,7 +134,7 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) 
       for (const auto& t : list) {
         ++s.truth_robots;
         const int sides = sidesSeen(t);
-        const bool complete = sides >= 3;
+        const bool complete = sides == 4;
         s.detectable_robots += complete;
         s.full_robots += sides == 4;
         int best = -1;

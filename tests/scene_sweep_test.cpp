@@ -245,7 +245,7 @@ void printRow(const char* name, const char* res, const SceneScore& s) {
 class SceneSweep : public ::testing::TestWithParam<size_t> {};
 
 // Columns: robots, recall, precision, id accuracy, recall of robots whose
-// center and 3+ side blobs reached the detector, id accuracy of robots with
+// center and 4 side blobs reached the detector, id accuracy of robots with
 // all 4 side blobs, balls, ball recall, ball precision.
 TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
   const Condition& c = conditions()[GetParam()];
@@ -261,27 +261,28 @@ TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
     EXPECT_GE(s.precision(), 0.98);
     EXPECT_GE(s.detectableRecall(), 0.98);
     EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
-    // Two ball cases not reached (4 placements of DV_SCENE_FULL=1, each
-    // placement one ball). Clipped at 1224 x 1024 (0.25 since coarse
-    // cameras are sampled at full resolution; 0.50 before): the overexposed
-    // ball turns yellowish and the orange predicted from the pattern colors
-    // by the affine chroma map (color_classes.h) lies barely nearer than the
-    // yellow class, so color confidence is 0.2..0.4. Touching a robot on the
-    // side away from the camera (0.75 at both sizes): the robot's edge
-    // hides part of it and no ball blob is left above the threshold.
+    // One ball case not reached (4 placements of DV_SCENE_FULL=1, each
+    // placement one ball): touching a robot on the side away from the
+    // camera (0.75 at both sizes), the robot's edge hides part of it and no
+    // ball blob is left above the threshold. The clipped ball at 1224 x 1024
+    // (0.25 before clipped_color.h) is found in all 4.
     const std::string name = c.name;
-    const bool ball_known = name == "ball_touching_robot" || (half && name == "exposure_bright_clipping");
-    if (!ball_known)
+    if (name != "ball_touching_robot")
       EXPECT_GE(s.ballRecall(), 0.99);
     else if (fullRun())
-      EXPECT_GE(s.ballRecall(), 0.25);
+      EXPECT_GE(s.ballRecall(), 0.75);
     EXPECT_GE(s.ballPrecision(), 0.98);
     // Overall recall also depends on the pixel stage delivering the side
     // blobs. At 1224 x 1024 a Bayer cell is 11.4 mm and green side blobs,
     // which meet the green carpet at the robot's rim, fall below the blob
     // threshold about 12 % of the time (pink: 1 %); a robot missing two is
-    // lost and one missing one gets a guessed id.
-    EXPECT_GE(s.recall(), half ? 0.75 : 0.95);
+    // lost, and one missing one is reported only where a fully seen
+    // teammate holds one of its two possible ids (a guess was right 7 times
+    // in 14 over the sweep). Pale colors also lose the pale pink blobs
+    // (0.53 over the 4 placements; 0.77 with guesses reported, of which
+    // only the same 0.53 had the right id).
+    const bool pale = name == "colors_pale";
+    EXPECT_GE(s.recall(), half ? (pale ? 0.5 : 0.75) : 0.95);
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "detection/blob_index.h"
+#include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
 
@@ -32,6 +33,7 @@ struct FrameBlob {
   FieldMm at_team[2]; // at the yellow / blue robot height
   FieldMm at_ball;    // at the ball center height
   ColorVec color;
+  float rgb[3] = {0, 0, 0};
   float score = 0;
   bool valid = false;
   int robot = -1;  // accepted robot using this blob
@@ -49,6 +51,9 @@ struct Hypothesis {
   int track = -1;
   std::array<MarkerColor, 4> colors{};  // side colors, valid where seen
   uint8_t seen_sides = 0;               // bit s-1 set: slot s was seen
+  // The id was seen whole, follows from the ids others hold, or comes from
+  // a track that once saw the robot whole.
+  bool id_known = false;
   bool fullPattern() const { return seen_sides == 0xF; }
 };
 
@@ -197,6 +202,7 @@ struct Detector::Impl {
                 alongRay(b.position, z0, opt.ball_radius, f.at_ball) &&
                 std::isfinite(b.position.x) && std::isfinite(b.position.y);
       f.color = colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]);
+      for (int c = 0; c < 3; ++c) f.rgb[c] = b.rgb[c];
       f.score = b.score;
       blobs.push_back(f);
       // Invalid blobs are put far away so that no query finds them.
@@ -414,8 +420,9 @@ struct Detector::Impl {
       r.id = patternId(colors);
     }
     // A robot missing a side blob has two possible ids; ids are unique per
-    // team, so prefer the one no fully seen robot of its team holds.
+    // team, so when a fully seen robot of its team holds one, it is the other.
     for (auto& r : robots) {
+      r.id_known = r.fullPattern();
       if (r.fullPattern() || r.n != 4) continue;
       int missing = 0;
       while (r.seen_sides >> missing & 1) ++missing;
@@ -427,7 +434,9 @@ struct Detector::Impl {
           if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
         return false;
       };
-      if (taken(r.id) && !taken(alt_id)) r.id = alt_id, r.colors = alt;
+      const bool green_taken = taken(r.id), pink_taken = taken(alt_id);
+      if (green_taken && !pink_taken) r.id = alt_id, r.colors = alt;
+      r.id_known = green_taken != pink_taken;
     }
 
     // How this camera shows the pattern colors tells where its orange is.
@@ -665,6 +674,7 @@ struct Detector::Impl {
       const int k = track_match[r];
       if (k < 0) continue;
       if (r < fresh) applyIdentity(tracks[k], robots[r]);
+      if (tracks[k].id_certain) robots[r].id_known = true;
       updateTrack(tracks[k], robots[r], t);
     }
     // Drop tracks this frame did not confirm, then start new ones.
@@ -734,12 +744,16 @@ struct Detector::Impl {
       if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
           p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
         continue;
-      float d_or = colorDistance(b.color, orange);
-      if (color_map.valid()) d_or = std::min(d_or, colorDistance(b.color, mapped_orange));
+      // Against every class, the blob counts with the colors it may have
+      // had before a channel clipped (an overexposed ball looks yellowish).
+      const ClippedColor seen(b.rgb);
+      if (seen.saturated()) continue;
+      float d_or = seen.distance(orange);
+      if (color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange));
       float d_neg = std::numeric_limits<float>::max();
       int nearest_neg = kField;
       for (int k : negatives) {
-        const float d = colorDistance(b.color, frame_color[k]);
+        const float d = seen.distance(frame_color[k]);
         if (d < d_neg) d_neg = d, nearest_neg = k;
       }
       if (d_or >= d_neg) {
@@ -886,6 +900,9 @@ struct Detector::Impl {
     findBalls(t, opt.tracking, out);
 
     for (const auto& r : robots) {
+      // The league's protocol has no unknown id, and a wrong one counts as
+      // a false robot and a missed one: a guessed id is not reported.
+      if (!r.id_known && !opt.report_guessed_ids) continue;
       RobotDetection d;
       d.team = r.team;
       d.id = r.id;

@@ -1,0 +1,32 @@
+#include "detection/clipped_color.h"
+
+#include <algorithm>
+
+namespace dv {
+
+namespace {
+// Gain steps for the clipped channel (1 .. kMaxClipGain): a chromaticity
+// step of at most about 4 units, small against the class distances.
+constexpr int kSteps = 21;
+}  // namespace
+
+ClippedColor::ClippedColor(const float rgb[3]) {
+  for (int c = 0; c < 3; ++c) {
+    rgb_[c] = rgb[c];
+    if (rgb[c] >= kClipLevel) clipped_ = c, ++n_clipped_;
+  }
+}
+
+float ClippedColor::distance(const ColorVec& target) const {
+  float v[3] = {rgb_[0], rgb_[1], rgb_[2]};
+  float best = colorDistance(colorFeature(v[0], v[1], v[2]), target);
+  if (n_clipped_ != 1) return best;
+  const float step = (kMaxClipGain - 1.f) / (kSteps - 1);
+  for (int i = 1; i < kSteps; ++i) {
+    v[clipped_] = rgb_[clipped_] * (1.f + step * i);
+    best = std::min(best, colorDistance(colorFeature(v[0], v[1], v[2]), target));
+  }
+  return best;
+}
+
+}  // namespace dv

@@ -1,0 +1,36 @@
+#pragma once
+// Overexposure clips channels one by one: an orange ball whose red
+// saturates first shows less red than it has, and its chromaticity moves
+// toward yellow. A clipped channel says only "at least this much", so a
+// blob is compared with a class by the nearest color that would clip to
+// what was seen, not by the clipped color itself.
+#include "detection/color_classes.h"
+
+namespace dv {
+
+// Mean channel level (0..255) from which a blob's channel counts as
+// clipped: a saturated disc averages below 255 through its rim, blur and
+// the sensor noise (the sweep's clipped ball at 1224 x 1024: 246).
+inline constexpr float kClipLevel = 240.f;
+
+// The candidate colors of one blob: its mean RGB, with a clipped channel
+// free to grow up to kMaxClipGain times.
+class ClippedColor {
+ public:
+  static constexpr float kMaxClipGain = 3.f;
+  explicit ClippedColor(const float rgb[3]);
+  bool clipped() const { return n_clipped_ > 0; }
+  // Two or three channels clipped: with two free channels nearly any hue
+  // fits (a clipped yellow reaches orange), so the color says too little.
+  bool saturated() const { return n_clipped_ >= 2; }
+  // Smallest chromaticity distance from `c` to the candidate colors; the
+  // plain distance when nothing clipped. Not for saturated colors.
+  float distance(const ColorVec& c) const;
+
+ private:
+  float rgb_[3];
+  int clipped_ = -1;
+  int n_clipped_ = 0;
+};
+
+}  // namespace dv
