@@ -2,6 +2,8 @@
 // binary on real files: exit codes, outputs, and one clear message per bad
 // input (naming the file or frame) while the run goes on where it can.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -308,17 +310,20 @@ TEST_F(CliRun, SyntheticRunEndsWithTruthComparison) {
 }
 
 // Two runs' detections of one frame agree: the same robots (team, id) and
-// balls in the same order, at the same places. Positions may differ in the
-// last float digits: geometry.json stores the calibration as floats.
+// balls at the same places. Positions may differ in the last float digits
+// (geometry.json stores the calibration as floats), so robots of nearly equal
+// confidence may be listed in either order: they are matched by id.
 void expectSameDetections(const ssl::SSL_DetectionFrame& a, const ssl::SSL_DetectionFrame& b) {
   EXPECT_EQ(a.t_capture(), b.t_capture());
   auto robots = [](const auto& x, const auto& y) {
     ASSERT_EQ(x.size(), y.size());
-    for (int i = 0; i < x.size(); ++i) {
-      EXPECT_EQ(x[i].robot_id(), y[i].robot_id());
-      EXPECT_NEAR(x[i].x(), y[i].x(), 0.05);
-      EXPECT_NEAR(x[i].y(), y[i].y(), 0.05);
-      EXPECT_NEAR(x[i].orientation(), y[i].orientation(), 1e-4);
+    for (const auto& r : x) {
+      const auto same = std::find_if(y.begin(), y.end(),
+                                     [&](const auto& q) { return q.robot_id() == r.robot_id(); });
+      ASSERT_NE(same, y.end()) << "robot " << r.robot_id() << " missing in the second run";
+      EXPECT_NEAR(r.x(), same->x(), 0.05);
+      EXPECT_NEAR(r.y(), same->y(), 0.05);
+      EXPECT_NEAR(r.orientation(), same->orientation(), 1e-4);
     }
   };
   robots(a.robots_yellow(), b.robots_yellow());
@@ -372,12 +377,15 @@ TEST_F(CliRun, ImageSequenceAt60FpsIsTrackedLikeTheSyntheticSource) {
     EXPECT_NEAR(pa.detection().t_capture(), i / 60.0, 1e-9);
     expectSameDetections(pa.detection(), pb.detection());
   }
-  // And it is the scene: every robot and the ball found on these frames.
+  // And it is the scene: the robots and the ball found on these frames, with
+  // no false robot. A robot whose side blob is missing before any frame saw
+  // it whole is not reported (its id would be a guess): 69 of 72 here.
   const CliResult e = cli("eval --truth " + path("frames/truth.jsonl") + " --detections " + path("seq.jsonl") +
                           " --json");
   ASSERT_EQ(e.code, 0) << e.err;
   const auto j = nlohmann::json::parse(e.out);
-  EXPECT_GE(j["overall"]["robots"]["recall"].get<double>(), 0.98) << e.out;
+  EXPECT_GE(j["overall"]["robots"]["recall"].get<double>(), 0.95) << e.out;
+  EXPECT_GE(j["overall"]["robots"]["precision"].get<double>(), 0.99) << e.out;
   EXPECT_GE(j["overall"]["balls"]["recall"].get<double>(), 0.98) << e.out;
 }
 
