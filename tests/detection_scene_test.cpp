@@ -84,9 +84,9 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   EXPECT_GE(s.detectableRecall(), 0.97);
   EXPECT_GE(s.detectableBallRecall(), 0.97);
   // The overall bar. The side view does not reach it for robots (recall
-  // 0.62 over the 6 placements of DV_SCENE_FULL=1, every robot whose blobs
-  // reached the detector found; 0.72 when robots missing a side blob were
-  // reported with a guessed id, 3 of those 6 ids wrong). Its mosaic is sampled at every pixel
+  // 0.72 over the 6 placements of DV_SCENE_FULL=1, every robot whose blobs
+  // reached the detector found; robots missing a side blob are reported with
+  // a guessed id, 3 of those 6 ids wrong; 0.62 with --no-guessed-ids). Its mosaic is sampled at every pixel
   // (bayer_sampling.h), which did not change recall (0.73 with 2x2
   // subsampling; 0.72..0.73 on 3.65, 4.5 and 5.6 mm grids): the robots
   // lost are either partly hidden behind a nearer robot (no blob at any
@@ -94,7 +94,7 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   // than two periods of the red and blue sites, and lens blur stretches it
   // along the viewing direction into an ellipse the round score windows miss.
   const bool side = std::string(GetParam()) == "side_view";
-  EXPECT_GE(s.recall(), side ? 0.6 : 0.97);
+  EXPECT_GE(s.recall(), side ? 0.7 : 0.97);
   EXPECT_GE(s.ballRecall(), 0.97);
 }
 
@@ -126,13 +126,13 @@ TEST_P(HarshScenesHalfResolution, RobotsAndBallWithTheSameDefaults) {
   // mosaic sampled at every pixel (0.82 with 2x2 subsampling): the renderer's
   // noise is per pixel, so at half the resolution each millimetre of field
   // holds a quarter of the samples, and twice the noise, of 2448 x 2048.
-  // Robots missing a side blob are reported only when their id is known,
-  // not guessed (detector.h, report_guessed_ids). Over the 6 placements,
-  // guesses were right in 2/2 (uneven light), 7/7 (blue white balance) and
-  // 24/33 (dark, noisy): recall 0.99 -> 0.97, 1.00 -> 0.93, 0.90 -> 0.55,
-  // at id-aware precision 1.00 where guesses gave 0.90 in the dark.
+  // Robots missing a side blob are reported with a guessed id (detector.h,
+  // report_guessed_ids). Over the 6 placements guesses were right in 2/2
+  // (uneven light), 7/7 (blue white balance) and 24/33 (dark, noisy);
+  // leaving them out gives recall 0.97, 0.93 and 0.55 at id-aware
+  // precision 1.00, where guesses give 0.90 in the dark.
   const bool dark = std::string(GetParam()) == "dark_noisy";
-  EXPECT_GE(s.recall(), dark ? 0.5 : 0.92);
+  EXPECT_GE(s.recall(), dark ? 0.85 : 0.97);
   EXPECT_GE(s.precision(), 0.98);
   EXPECT_GE(s.ballRecall(), 0.97);
   EXPECT_GE(s.ballPrecision(), 0.98);

@@ -47,6 +47,7 @@ struct RunArgs {
   std::string record;
   std::string jsonl;
   bool no_publish = false;
+  bool no_guessed_ids = false;
   std::string multicast_group = "224.5.23.2";
   uint16_t multicast_port = 10006;
   std::string multicast_interface;
@@ -187,6 +188,7 @@ ProcessorOptions processorOptions(const RunArgs& a) {
   o.backend.opencl_platform = a.opencl_platform;
   o.backend.opencl_device = a.opencl_device;
   o.pipeline.bayer_sampling = bayerSamplingFromName(a.bayer_sampling);
+  o.detector.report_guessed_ids = !a.no_guessed_ids;
   return o;
 }
 
@@ -459,6 +461,8 @@ CommandFn addRunCommand(CLI::App& root) {
   cmd->add_option("--record", a->record, "also write the packets to this SSL log file (.gz: compressed)");
   cmd->add_option("--jsonl", a->jsonl, "also write one canonical-JSON SSL_WrapperPacket per line here");
   cmd->add_flag("--no-publish", a->no_publish, "do not multicast the packets");
+  cmd->add_flag("--no-guessed-ids", a->no_guessed_ids,
+                "leave out robots whose id is a guess (a side blob missing and no track or teammate settles it)");
   cmd->add_option("--multicast-group", a->multicast_group, "vision multicast group")
       ->default_str("224.5.23.2");
   cmd->add_option("--multicast-port", a->multicast_port, "vision multicast port")->default_str("10006");
