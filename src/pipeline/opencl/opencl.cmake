@@ -5,17 +5,9 @@
 #    runtime (linked statically) and libOpenCL.so.1, for GPU machines without
 #    the project's other libraries.
 file(GLOB DV_KERNEL_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/kernels/*.cl)
-list(SORT DV_KERNEL_FILES)
-string(REPLACE ";" "|" DV_KERNEL_FILES_ARG "${DV_KERNEL_FILES}")
 set(DV_EMBEDDED_KERNELS_CPP ${PROJECT_BINARY_DIR}/kernels/embedded_kernels.cpp)
-add_custom_command(OUTPUT ${DV_EMBEDDED_KERNELS_CPP}
-  COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/kernels
-  COMMAND ${CMAKE_COMMAND} -DOUT=${DV_EMBEDDED_KERNELS_CPP} -DFILES=${DV_KERNEL_FILES_ARG}
-          -DHEADER=pipeline/opencl/embedded_kernels.h -DNAME=Kernel
-          -P ${PROJECT_SOURCE_DIR}/cmake/embed_text_files.cmake
-  DEPENDS ${DV_KERNEL_FILES} ${PROJECT_SOURCE_DIR}/cmake/embed_text_files.cmake
-  COMMENT "Embedding OpenCL kernels" VERBATIM)
-target_sources(dv_pipeline PRIVATE ${DV_EMBEDDED_KERNELS_CPP})
+dv_embed_text_files(dv_pipeline Kernel pipeline/opencl/embedded_kernels.h ${DV_EMBEDDED_KERNELS_CPP}
+                    ${DV_KERNEL_FILES})
 target_compile_definitions(dv_pipeline PUBLIC CL_TARGET_OPENCL_VERSION=120)
 
 # The engine itself uses nothing but OpenCL and the standard library.
