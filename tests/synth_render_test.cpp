@@ -104,6 +104,22 @@ TEST(SynthRender, RobotCenterBlobWhereTheCameraModelSaysTiltedAndDistorted) {
   }
 }
 
+// The ball's silhouette in a radiance image is centered where the camera
+// model puts it. The shaded sphere's brightness is not symmetric, so the
+// silhouette is compared: the carpet gives green 100 * (1 - coverage) and
+// the specular highlight adds the same to red and green.
+void expectBallSilhouetteAt(const cv::Mat& rad, ImagePx want) {
+  double sw = 0, su = 0, sv = 0;
+  for (int v = int(want.v) - 8; v <= int(want.v) + 8; ++v)
+    for (int u = int(want.u) - 8; u <= int(want.u) + 8; ++u) {
+      const cv::Vec3f p = rad.at<cv::Vec3f>(v, u);
+      const double cover = 1 - (p[1] - p[2]) / 100.0;
+      sw += cover, su += cover * u, sv += cover * v;
+    }
+  EXPECT_NEAR(su / sw, want.u, 0.3);
+  EXPECT_NEAR(sv / sw, want.v, 0.3);
+}
+
 TEST(SynthRender, BallCenterWhereTheCameraModelSays) {
   SceneSpec s = cleanScene({0, 0, 3000}, {0, 0, 0}, 600, 0.05);
   s.ball.present = true;
@@ -116,20 +132,7 @@ TEST(SynthRender, BallCenterWhereTheCameraModelSays) {
   ASSERT_TRUE(want);
   EXPECT_NEAR(f.truth.balls(0).pixel_x(), want->u, 1e-3);
   EXPECT_FLOAT_EQ(f.truth.balls(0).z(), 21.5f);
-  // The shaded sphere's brightness is not symmetric, so compare the
-  // silhouette.
-  const cv::Mat rad = r.renderRadiance(0, 0);
-  double sw = 0, su = 0, sv = 0;
-  for (int v = int(want->v) - 8; v <= int(want->v) + 8; ++v)
-    for (int u = int(want->u) - 8; u <= int(want->u) + 8; ++u) {
-      // Coverage of a pixel: the carpet gives green 100 * (1 - coverage);
-      // the specular highlight adds the same to red and green.
-      const cv::Vec3f p = rad.at<cv::Vec3f>(v, u);
-      const double cover = 1 - (p[1] - p[2]) / 100.0;
-      sw += cover, su += cover * u, sv += cover * v;
-    }
-  EXPECT_NEAR(su / sw, want->u, 0.3);
-  EXPECT_NEAR(sv / sw, want->v, 0.3);
+  expectBallSilhouetteAt(r.renderRadiance(0, 0), *want);
 }
 
 TEST(SynthRender, MovingRobotTruthIsMidExposureAndMatchesTheBlurredBlob) {
@@ -194,16 +197,7 @@ TEST(SynthRender, BouncingAndKickedBallTruthMatchesTheRender) {
     EXPECT_NEAR(f.truth.balls(0).y(), w.y, 1e-3);
     const auto want = cam.fieldToImage({w.x, w.y, 21.5});
     ASSERT_TRUE(want);
-    const cv::Mat rad = r.renderRadiance(w.frame / s.fps, 0);
-    double sw = 0, su = 0, sv = 0;
-    for (int v = int(want->v) - 8; v <= int(want->v) + 8; ++v)
-      for (int u = int(want->u) - 8; u <= int(want->u) + 8; ++u) {
-        const cv::Vec3f p = rad.at<cv::Vec3f>(v, u);
-        const double cover = 1 - (p[1] - p[2]) / 100.0;
-        sw += cover, su += cover * u, sv += cover * v;
-      }
-    EXPECT_NEAR(su / sw, want->u, 0.3);
-    EXPECT_NEAR(sv / sw, want->v, 0.3);
+    expectBallSilhouetteAt(r.renderRadiance(w.frame / s.fps, 0), *want);
   }
 }
 
