@@ -196,9 +196,10 @@ __attribute__((target_clones("avx2", "default"))) void chromaRow(
   }
 }
 
+// Sample (i, j) goes to out[(j - oj) * stride + i - oi].
 template <int RX, int RY, int BX, int BY>
-void chromaRowsT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin,
-                 int row_end, int c0, int c1) {
+void chromaRowsT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* out, size_t stride, int oi, int oj,
+                 int row_begin, int row_end, int c0, int c1) {
   const int ws = raw.cols / 2, hs = raw.rows / 2;
   constexpr int rdy = RY == 0 ? 1 : -1;
   constexpr int bdy = BY == 0 ? 1 : -1;
@@ -207,15 +208,16 @@ void chromaRowsT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int
     chromaRow<RX, RY, BX, BY>(raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * rj + RY),
                               raw.ptr<uint8_t>(2 * j + BY), raw.ptr<uint8_t>(2 * bj + BY),
                               raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * j + 1 - RY), ws,
-                              c0, c1, k, packed + static_cast<size_t>(ws) * j + c0);
+                              c0, c1, k, out + (j - oj) * stride + (c0 - oi));
   }
 }
 
-// Same rows written transposed (sample (i, j) at i * stride + j): blocks of
-// 16 rows go through a small buffer, then out as one 64-byte run per column.
+// Same rows written transposed (sample (i, j) at (i - oi) * stride + j - oj):
+// blocks of 16 rows go through a small buffer, then out as one 64-byte run
+// per column.
 template <int RX, int RY, int BX, int BY>
-void chromaRowsTransposedT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed_t, size_t stride,
-                           int row_begin, int row_end, int c0, int c1) {
+void chromaRowsTransposedT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* out, size_t stride, int oi,
+                           int oj, int row_begin, int row_end, int c0, int c1) {
   const int ws = raw.cols / 2, hs = raw.rows / 2;
   constexpr int rdy = RY == 0 ? 1 : -1;
   constexpr int bdy = BY == 0 ? 1 : -1;
@@ -233,7 +235,7 @@ void chromaRowsTransposedT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* p
                                   raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * j + 1 - RY), ws,
                                   i0, i1, k, buf[r]);
       }
-      transposeBlock(buf[0], kCols, rows, i1 - i0, packed_t + i0 * stride + j0, stride);
+      transposeBlock(buf[0], kCols, rows, i1 - i0, out + (i0 - oi) * stride + (j0 - oj), stride);
     }
   }
 }
@@ -266,16 +268,35 @@ void subsampleBayerRows(const cv::Mat& raw, BayerPattern pattern, uint8_t* rgbx,
   }
 }
 
+namespace {
+
+// Samples (i, j), i in [c0, c1), j in [j0, j1), to out[(j - oj) * stride + i - oi],
+// or with i and j exchanged in the output when transposed.
+void chromaBox(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k, bool transposed, uint32_t* out,
+               size_t stride, int oi, int oj, int j0, int j1, int c0, int c1) {
+  if (transposed) {
+    switch (pattern) {
+      case BayerPattern::GRBG: return chromaRowsTransposedT<1, 0, 0, 1>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+      case BayerPattern::GBRG: return chromaRowsTransposedT<0, 1, 1, 0>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+      case BayerPattern::BGGR: return chromaRowsTransposedT<1, 1, 0, 0>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+      default: return chromaRowsTransposedT<0, 0, 1, 1>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+    }
+  }
+  switch (pattern) {
+    case BayerPattern::GRBG: return chromaRowsT<1, 0, 0, 1>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+    case BayerPattern::GBRG: return chromaRowsT<0, 1, 1, 0>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+    case BayerPattern::BGGR: return chromaRowsT<1, 1, 0, 0>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+    default: return chromaRowsT<0, 0, 1, 1>(raw, k, out, stride, oi, oj, j0, j1, c0, c1);
+  }
+}
+
+}  // namespace
+
 void bayerChromaRows(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
                      uint32_t* packed, int row_begin, int row_end, int col_begin, int col_end) {
   const int ws = raw.cols / 2;
   const int c0 = std::max(0, col_begin), c1 = col_end < 0 ? ws : std::min(ws, col_end);
-  switch (pattern) {
-    case BayerPattern::GRBG: return chromaRowsT<1, 0, 0, 1>(raw, k, packed, row_begin, row_end, c0, c1);
-    case BayerPattern::GBRG: return chromaRowsT<0, 1, 1, 0>(raw, k, packed, row_begin, row_end, c0, c1);
-    case BayerPattern::BGGR: return chromaRowsT<1, 1, 0, 0>(raw, k, packed, row_begin, row_end, c0, c1);
-    default: return chromaRowsT<0, 0, 1, 1>(raw, k, packed, row_begin, row_end, c0, c1);
-  }
+  chromaBox(raw, pattern, k, false, packed, static_cast<size_t>(ws), 0, 0, row_begin, row_end, c0, c1);
 }
 
 void bayerChromaRowsTransposed(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
@@ -283,12 +304,12 @@ void bayerChromaRowsTransposed(const cv::Mat& raw, BayerPattern pattern, const C
                                int col_begin, int col_end) {
   const int ws = raw.cols / 2;
   const int c0 = std::max(0, col_begin), c1 = col_end < 0 ? ws : std::min(ws, col_end);
-  switch (pattern) {
-    case BayerPattern::GRBG: return chromaRowsTransposedT<1, 0, 0, 1>(raw, k, packed_t, stride, row_begin, row_end, c0, c1);
-    case BayerPattern::GBRG: return chromaRowsTransposedT<0, 1, 1, 0>(raw, k, packed_t, stride, row_begin, row_end, c0, c1);
-    case BayerPattern::BGGR: return chromaRowsTransposedT<1, 1, 0, 0>(raw, k, packed_t, stride, row_begin, row_end, c0, c1);
-    default: return chromaRowsTransposedT<0, 0, 1, 1>(raw, k, packed_t, stride, row_begin, row_end, c0, c1);
-  }
+  chromaBox(raw, pattern, k, true, packed_t, stride, 0, 0, row_begin, row_end, c0, c1);
+}
+
+void bayerChromaBox(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k, bool transposed,
+                    uint32_t* out, size_t stride, int i_begin, int i_end, int j_begin, int j_end) {
+  chromaBox(raw, pattern, k, transposed, out, stride, i_begin, j_begin, j_begin, j_end, i_begin, i_end);
 }
 
 __attribute__((target_clones("avx2", "default"))) void bgrChromaRows(

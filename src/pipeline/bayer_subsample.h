@@ -39,6 +39,13 @@ void bayerChromaRows(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed
 void bayerChromaRowsTransposed(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k,
                                uint32_t* packed_t, size_t stride, int row_begin, int row_end,
                                int col_begin, int col_end);
+// Samples i in [i_begin, i_end), j in [j_begin, j_end) (inside the
+// subsampled image) into a box of their own: sample (i, j) at
+// out[(j - j_begin) * stride + i - i_begin], or at
+// out[(i - i_begin) * stride + j - j_begin] when transposed. The values are
+// those of bayerChromaRows.
+void bayerChromaBox(const cv::Mat& raw, BayerPattern pattern, const ChromaFixed& k, bool transposed,
+                    uint32_t* out, size_t stride, int i_begin, int i_end, int j_begin, int j_end);
 void bgrChromaRows(const cv::Mat& raw, const ChromaFixed& k, uint32_t* packed, int row_begin,
                    int row_end, int col_begin, int col_end);
 constexpr float kPackedChromaScale = 64.0f;

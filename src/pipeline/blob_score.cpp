@@ -62,9 +62,49 @@ void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int
   }
 }
 
+namespace {
+
+// Rows of two whole planes.
+class PlaneRows final : public ChromaRowSource {
+ public:
+  PlaneRows(const float* ca, const float* cb, int width) : ca_(ca), cb_(cb), w_(width) {}
+  void rows(int y, const float*& a, const float*& b) override {
+    a = ca_ + static_cast<size_t>(y) * w_;
+    b = cb_ + static_cast<size_t>(y) * w_;
+  }
+
+ private:
+  const float *ca_, *cb_;
+  size_t w_;
+};
+
+// G row y from the source (zero where the gradient reaches past the plane).
+void gradientRow(ChromaRowSource& src, int width, int height, double scale, int y, int32_t* out) {
+  const int k = static_cast<int>(std::floor(scale));
+  const int m = k + 1;
+  if (y < m || y >= height - m || width <= 2 * m) {
+    std::memset(out, 0, sizeof(int32_t) * width);
+    return;
+  }
+  // Highest row first: a source that makes rows as asked makes them all.
+  const int ys[5] = {y + k + 1, y + k, y, y - k, y - k - 1};
+  const float* a[5];
+  const float* b[5];
+  for (int i = 0; i < 5; ++i) src.rows(ys[i], a[4 - i], b[4 - i]);
+  gradientDotRowFrom(a, b, width, scale, out);
+}
+
+}  // namespace
+
 void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int height, double scale,
                                 int r, int q, float* score, int y_begin, int y_end,
                                 std::vector<uint32_t>& scratch) {
+  PlaneRows rows(ca, cb, width);
+  quadrantMinScoreFromRows(rows, width, height, scale, r, q, score, y_begin, y_end, scratch);
+}
+
+void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
+                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch) {
   const size_t stride = static_cast<size_t>(width) + 1;
   const float norm = quadrantNorm(r, q);
   const int m = r + 1;
@@ -83,10 +123,10 @@ void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int
   auto g_row = [&](int y) { return g_rows + static_cast<size_t>(y & 1) * width; };
   const int t0 = first - r;
   std::memset(ring(t0), 0, sizeof(uint32_t) * stride);
-  gradientDotRow(ca, cb, width, height, scale, t0, g_row(t0));
+  gradientRow(src, width, height, scale, t0, g_row(t0));
   for (int t = t0 + 1; t <= last - 1 + r; ++t) {
     // Table row t: box row t - 1, i.e. G rows t - 1 and t (t < height - 1).
-    gradientDotRow(ca, cb, width, height, scale, t, g_row(t));
+    gradientRow(src, width, height, scale, t, g_row(t));
     boxRowPrefix(g_row(t - 1), g_row(t), width, prefix);
     addRow(ring(t - 1), prefix, static_cast<int>(stride), ring(t));
     const int y = t - r;  // all of rows y - r .. y + r are now in the ring

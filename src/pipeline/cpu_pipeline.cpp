@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "pipeline/band_plan.h"
 #include "pipeline/bayer_full.h"
 #include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
@@ -25,6 +26,10 @@ namespace {
 // cell's own brightness was tried: it lifts dark carpet against white lines
 // until line crossings score like blobs.) Local differences in light (sun
 // patches, shadows) are handled by the ratio score (score_windows.h).
+
+// Bands per thread for the banded pass: a thread the OS delays holds up
+// little of the frame, and the rows rectified twice stay few.
+constexpr int kBandsPerThread = 4;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -56,7 +61,12 @@ struct CpuPipeline::Impl {
   int margin = 1;             // cells without a full score window
   double color_radius = 1;    // cells
 
-  std::vector<uint32_t> packed;  // chroma samples, int16 pairs
+  std::vector<uint32_t> packed;  // chroma samples, int16 pairs (not for banded frames)
+  // Bayer 2x2 subsampling with the quadrant score: from the mosaic to the
+  // score band by band (band_plan.h).
+  bool banded = false;
+  BandPlan bands;
+  std::vector<double> band_bayer_ms;
   ChromaFixed chroma_fixed{};
   cv::Mat last_raw;  // header of the last frame, for colors and inspection
   std::vector<float> ca, cb, score;
@@ -101,7 +111,16 @@ struct CpuPipeline::Impl {
     if (transposed) table_t = table.transposed(stride_t);
 
     const size_t cells = static_cast<size_t>(grid.width) * grid.height;
-    packed.assign(static_cast<size_t>(table.src_width) * (transposed ? stride_t : table.src_height), 0);
+    banded = opt.bayer != BayerPattern::None && !full_bayer && opt.score != BlobScoreKind::CircleMin;
+    if (banded) {
+      // A few bands per thread, so that a thread the OS delays holds up
+      // little; each band rectifies 2 * reach rows twice.
+      const int reach = quadrant_r + static_cast<int>(std::floor(gradient_scale)) + 1;
+      bands = BandPlan::build(readTable(), transposed, kBandsPerThread * pool.size(), reach);
+      band_bayer_ms.assign(bands.bands.size(), 0);
+    } else {
+      packed.assign(static_cast<size_t>(table.src_width) * (transposed ? stride_t : table.src_height), 0);
+    }
     for (int c = 0; c < 3; ++c) {
       chroma_fixed.a[c] = static_cast<int>(std::lround(chroma.a[c] * 1024));
       chroma_fixed.b[c] = static_cast<int>(std::lround(chroma.b[c] * 1024));
@@ -142,6 +161,144 @@ struct CpuPipeline::Impl {
     });
   }
 
+  // Each stage over the whole frame in turn (full Bayer sampling, BGR
+  // frames, the circle score).
+  void wholePlaneScore(const cv::Mat& raw, bool bayer, float gain) {
+    auto t0 = std::chrono::steady_clock::now();
+    const int gw = grid.width, gh = grid.height;
+    // Only the part of the image the grid reads.
+    const int rows = table.y_end - table.y_begin;
+    const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
+    if (full_bayer) {
+      pool.parallelFor(rows, [&](int b, int e) {
+        fullBayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+      });
+    } else if (bayer) {
+      pool.parallelFor(rows, [&](int b, int e) {
+        if (transposed)
+          bayerChromaRowsTransposed(raw, opt.bayer, chroma_fixed, packed.data(), table_t.src_width, y0 + b,
+                                    y0 + e, x0, x1);
+        else
+          bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+      });
+    } else {
+      pool.parallelFor(rows, [&](int b, int e) {
+        bgrChromaRows(raw, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
+      });
+    }
+    last_raw = raw;
+    times.bayer_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    pool.parallelFor(gh, [&](int b, int e) {
+      rectifyChromaRows(readTable(), packed.data(), gain, ca.data(), cb.data(), b, e);
+    });
+    times.rectify_ms = msSince(t0);
+
+    // The circle score reads G and its row prefix sums from whole planes;
+    // the quadrant score makes its G and table rows itself, band by band
+    // (their time is in score_ms).
+    const bool circle = opt.score == BlobScoreKind::CircleMin;
+    t0 = std::chrono::steady_clock::now();
+    if (circle) {
+      pool.parallelFor(gh, [&](int b, int e) {
+        gradientDotRows(ca.data(), cb.data(), gw, gh, gradient_scale, gdot.data(), b, e);
+      });
+    }
+    times.gradient_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    if (circle)
+      pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
+    times.sat_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    if (circle) {
+      pool.parallelFor(gh, [&](int b, int e) {
+        circleMinScoreRows(sat.data(), gw, gh, circle_r, score.data(), b, e);
+      });
+    } else {
+      pool.parallelFor(gh, [&](int b, int e) {
+        thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
+        quadrantMinScoreFromChroma(ca.data(), cb.data(), gw, gh, gradient_scale, quadrant_r, inner_q,
+                                   score.data(), b, e, ring);
+      });
+    }
+    times.score_ms = msSince(t0);
+  }
+
+  // Rows [lo, hi) of one band's chroma: its own rows in the planes, the
+  // others in a private buffer; rectified from the band's sample box when
+  // first asked for.
+  class BandRows final : public ChromaRowSource {
+   public:
+    BandRows(Impl& m, const BandPlan::Band& band, const uint32_t* box, float gain, float* halo_a,
+             float* halo_b)
+        : m_(m), band_(band), box_(box), gain_(gain), halo_a_(halo_a), halo_b_(halo_b), done_(band.lo) {}
+    void rows(int y, const float*& a, const float*& b) override {
+      if (y >= done_) makeUpTo(y + 1);
+      float *pa, *pb;
+      rowPointers(y, pa, pb);
+      a = pa, b = pb;
+    }
+    void makeUpTo(int y_end) {
+      const size_t w = static_cast<size_t>(m_.grid.width);
+      const RemapTable& t = m_.readTable();
+      for (; done_ < y_end; ++done_) {
+        float *a, *b;
+        rowPointers(done_, a, b);
+        rectifyChromaCells(m_.bands.index.data() + band_.index_offset + (done_ - band_.lo) * w,
+                           t.frac.data() + done_ * w, band_.stride, box_, gain_, a, b, w);
+      }
+    }
+
+   private:
+    void rowPointers(int y, float*& a, float*& b) const {
+      const size_t w = static_cast<size_t>(m_.grid.width);
+      if (y >= band_.y_begin && y < band_.y_end) {
+        a = m_.ca.data() + y * w;
+        b = m_.cb.data() + y * w;
+        return;
+      }
+      const size_t slot = y < band_.y_begin ? y - band_.lo : (band_.y_begin - band_.lo) + (y - band_.y_end);
+      a = halo_a_ + slot * w;
+      b = halo_b_ + slot * w;
+    }
+    Impl& m_;
+    const BandPlan::Band& band_;
+    const uint32_t* box_;
+    float gain_;
+    float *halo_a_, *halo_b_;
+    int done_;
+  };
+
+  // Bayer 2x2 subsampling, rectification and the quadrant score band by band
+  // (band_plan.h): bit for bit the whole-plane stages.
+  void bandedScore(const cv::Mat& raw, float gain) {
+    const int gw = grid.width, gh = grid.height;
+    pool.parallelFor(static_cast<int>(bands.bands.size()), [&](int first, int last) {
+      // Per thread, sized on the first frame.
+      thread_local std::vector<uint32_t> box_store, ring;
+      thread_local std::vector<float> halo;
+      box_store.resize(bands.box_size + 16);
+      halo.resize(2 * static_cast<size_t>(bands.haloRows()) * gw);
+      // Whole 64-byte lines for the box rows (its stride is a multiple of 16).
+      uint32_t* box = box_store.data();
+      while (reinterpret_cast<uintptr_t>(box) % 64) ++box;
+      for (int c = first; c < last; ++c) {
+        const BandPlan::Band& band = bands.bands[c];
+        const auto t0 = std::chrono::steady_clock::now();
+        bayerChromaBox(raw, opt.bayer, chroma_fixed, transposed, box, band.stride, band.i_begin, band.i_end,
+                       band.j_begin, band.j_end);
+        band_bayer_ms[c] = msSince(t0);
+        BandRows rows(*this, band, box, gain, halo.data(), halo.data() + static_cast<size_t>(bands.haloRows()) * gw);
+        quadrantMinScoreFromRows(rows, gw, gh, gradient_scale, quadrant_r, inner_q, score.data(), band.y_begin,
+                                 band.y_end, ring);
+        rows.makeUpTo(band.y_end);  // own rows the score did not need (next to the plane's edges)
+      }
+    });
+  }
+
   bool checkFrame(const cv::Mat& raw) {
     if (raw.empty()) {
       error = "empty frame";
@@ -177,31 +334,7 @@ struct CpuPipeline::Impl {
     const auto t_start = std::chrono::steady_clock::now();
     auto t0 = t_start;
 
-    // Only the part of the image the grid reads.
-    const int rows = table.y_end - table.y_begin;
-    const int y0 = table.y_begin, x0 = table.x_begin, x1 = table.x_end;
-    if (full_bayer) {
-      pool.parallelFor(rows, [&](int b, int e) {
-        fullBayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
-      });
-    } else if (bayer) {
-      pool.parallelFor(rows, [&](int b, int e) {
-        if (transposed)
-          bayerChromaRowsTransposed(raw, opt.bayer, chroma_fixed, packed.data(), table_t.src_width, y0 + b,
-                                    y0 + e, x0, x1);
-        else
-          bayerChromaRows(raw, opt.bayer, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
-      });
-    } else {
-      pool.parallelFor(rows, [&](int b, int e) {
-        bgrChromaRows(raw, chroma_fixed, packed.data(), y0 + b, y0 + e, x0, x1);
-      });
-    }
-    last_raw = raw;
-    times.bayer_ms = msSince(t0);
-
     // Frame brightness for the exposure normalisation (sparse sample).
-    t0 = std::chrono::steady_clock::now();
     {
       uint64_t sum = 0, n = 0;
       // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
@@ -231,46 +364,27 @@ struct CpuPipeline::Impl {
     }
     times.color_ms = msSince(t0);
 
+
+    const float gain = 1.0f / (luma_mean * kPackedChromaScale);
+    if (banded) {
+      t0 = std::chrono::steady_clock::now();
+      bandedScore(raw, gain);
+      last_raw = raw;
+      // Bayer time as its share of the threads' time; rectification and the
+      // score run interleaved and are reported together as the score.
+      const double wall = msSince(t0);
+      double bayer_sum = 0;
+      for (double v : band_bayer_ms) bayer_sum += v;
+      times.bayer_ms = std::min(wall, bayer_sum / pool.size());
+      times.rectify_ms = 0;
+      times.gradient_ms = times.sat_ms = 0;
+      times.score_ms = wall - times.bayer_ms;
+    } else {
+      wholePlaneScore(raw, bayer, gain);
+    }
+
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
-    pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(readTable(), packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
-                        cb.data(), b, e);
-    });
-    times.rectify_ms = msSince(t0);
-
-    // The circle score reads G and its row prefix sums from whole planes;
-    // the quadrant score makes its G and table rows itself, band by band
-    // (their time is in score_ms).
-    const bool circle = opt.score == BlobScoreKind::CircleMin;
-    t0 = std::chrono::steady_clock::now();
-    if (circle) {
-      pool.parallelFor(gh, [&](int b, int e) {
-        gradientDotRows(ca.data(), cb.data(), gw, gh, gradient_scale, gdot.data(), b, e);
-      });
-    }
-    times.gradient_ms = msSince(t0);
-
-    t0 = std::chrono::steady_clock::now();
-    if (circle)
-      pool.parallelFor(gh, [&](int b, int e) { satRowPrefixRows(gdot.data(), gw, gh, sat.data(), b, e); });
-    times.sat_ms = msSince(t0);
-
-    t0 = std::chrono::steady_clock::now();
-    if (circle) {
-      pool.parallelFor(gh, [&](int b, int e) {
-        circleMinScoreRows(sat.data(), gw, gh, circle_r, score.data(), b, e);
-      });
-    } else {
-      pool.parallelFor(gh, [&](int b, int e) {
-        thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
-        quadrantMinScoreFromChroma(ca.data(), cb.data(), gw, gh, gradient_scale, quadrant_r, inner_q,
-                                   score.data(), b, e, ring);
-      });
-    }
-    times.score_ms = msSince(t0);
-
-    t0 = std::chrono::steady_clock::now();
     // Raw score > threshold * floor is necessary for ratio > threshold.
     const float threshold = static_cast<float>(opt.threshold);
     const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r))

@@ -6,33 +6,39 @@
 
 namespace dv {
 
-__attribute__((target_clones("avx2", "default"))) void gradientDotRow(
-    const float* ca, const float* cb, int width, int height, double scale, int y, int32_t* out) {
+__attribute__((target_clones("avx2", "default"))) void gradientDotRowFrom(
+    const float* const a_rows[5], const float* const b_rows[5], int width, double scale, int32_t* out) {
   // i(x + s) with s = k + a: linear between samples k and k + 1 away.
   const int k = static_cast<int>(std::floor(scale));
   const float a = static_cast<float>(scale - k), na = 1 - a;
   const int m = k + 1;  // reach of the gradient
-  if (y < m || y >= height - m || width <= 2 * m) {
-    std::memset(out, 0, sizeof(int32_t) * width);
-    return;
-  }
   for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
-  const size_t w = width;
-  const float* a_rows[4] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + (y + k) * w,
-                            ca + (y + k + 1) * w};
-  const float* b_rows[4] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + (y + k) * w,
-                            cb + (y + k + 1) * w};
-  const float* a_mid = ca + y * w;
-  const float* b_mid = cb + y * w;
+  const float *a0 = a_rows[0], *a1 = a_rows[1], *a_mid = a_rows[2], *a3 = a_rows[3], *a4 = a_rows[4];
+  const float *b0 = b_rows[0], *b1 = b_rows[1], *b_mid = b_rows[2], *b3 = b_rows[3], *b4 = b_rows[4];
   for (int x = m; x < width - m; ++x) {
     const float gxa = na * (a_mid[x + k] - a_mid[x - k]) + a * (a_mid[x + k + 1] - a_mid[x - k - 1]);
-    const float gya = na * (a_rows[2][x] - a_rows[1][x]) + a * (a_rows[3][x] - a_rows[0][x]);
+    const float gya = na * (a3[x] - a1[x]) + a * (a4[x] - a0[x]);
     const float gxb = na * (b_mid[x + k] - b_mid[x - k]) + a * (b_mid[x + k + 1] - b_mid[x - k - 1]);
-    const float gyb = na * (b_rows[2][x] - b_rows[1][x]) + a * (b_rows[3][x] - b_rows[0][x]);
+    const float gyb = na * (b3[x] - b1[x]) + a * (b4[x] - b0[x]);
     // Truncation (not lrintf, which the compiler will not vectorise);
     // its bias toward zero is symmetric for both signs.
     out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
   }
+}
+
+void gradientDotRow(const float* ca, const float* cb, int width, int height, double scale, int y, int32_t* out) {
+  const int k = static_cast<int>(std::floor(scale));
+  const int m = k + 1;
+  if (y < m || y >= height - m || width <= 2 * m) {
+    std::memset(out, 0, sizeof(int32_t) * width);
+    return;
+  }
+  const size_t w = width;
+  const float* a_rows[5] = {ca + (y - k - 1) * w, ca + (y - k) * w, ca + y * w, ca + (y + k) * w,
+                            ca + (y + k + 1) * w};
+  const float* b_rows[5] = {cb + (y - k - 1) * w, cb + (y - k) * w, cb + y * w, cb + (y + k) * w,
+                            cb + (y + k + 1) * w};
+  gradientDotRowFrom(a_rows, b_rows, width, scale, out);
 }
 
 void gradientDotRows(const float* ca, const float* cb, int width, int height, double scale, int32_t* g,

@@ -35,6 +35,10 @@ struct ChromaTransform {
 // Writes planes ca, cb (grid sized, row-major).
 void rectifyChromaRows(const RemapTable& table, const uint32_t* packed, float gain, float* ca,
                        float* cb, int y_begin, int y_end);
+// The same for n cells given by their own table entries: sample indices into
+// `packed` (row stride `stride`) and fractions; results to ca[0..n), cb[0..n).
+void rectifyChromaCells(const int32_t* index, const uint16_t* frac, int stride, const uint32_t* packed,
+                        float gain, float* ca, float* cb, size_t n);
 
 // Color gradient dot product (thesis eq. 5.11, §5.2.7.1) at distance `scale`
 // cells (fractional distances interpolate linearly), summed over both chroma
@@ -46,6 +50,12 @@ void gradientDotRows(const float* ca, const float* cb, int width, int height, do
 // Row y alone, into out[0..width).
 void gradientDotRow(const float* ca, const float* cb, int width, int height, double scale, int y,
                     int32_t* out);
+
+// The same from five row pointers per plane, rows y - k - 1, y - k, y,
+// y + k, y + k + 1 with k = floor(scale); the row must be inside the plane's
+// gradient reach (gradientDotRow makes the zero rows).
+void gradientDotRowFrom(const float* const a_rows[5], const float* const b_rows[5], int width, double scale,
+                        int32_t* out);
 
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
 // (x, y), same gradient as gradientDotRows. Used only at peak candidates.
@@ -93,6 +103,21 @@ void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int
 void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int height, double scale,
                                 int r, int q, float* score, int y_begin, int y_end,
                                 std::vector<uint32_t>& scratch);
+
+// Where a score pass reads its chroma rows: two whole planes, or rows that a
+// band makes as they are asked for (rows are asked for in rising order, the
+// highest of a gradient row first; a band asks only within its rows plus
+// the reach of the score window and the gradient).
+class ChromaRowSource {
+ public:
+  virtual void rows(int y, const float*& a, const float*& b) = 0;
+
+ protected:
+  ~ChromaRowSource() = default;
+};
+// quadrantMinScoreFromChroma with the chroma rows from `src`.
+void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
+                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

@@ -34,11 +34,8 @@ inline int32_t lerp2(int32_t v00, int32_t v01, int32_t v10, int32_t v11, int32_t
   return top * (256 - fy) + bot * fy;
 }
 
-void rectifyScalar(const RemapTable& table, const uint32_t* src, float scale, float* ca, float* cb,
-                   size_t begin, size_t end) {
-  const int stride = table.src_width;
-  const int32_t* idx = table.index.data();
-  const uint16_t* fr = table.frac.data();
+void rectifyScalar(const int32_t* idx, const uint16_t* fr, int stride, const uint32_t* src, float scale,
+                   float* ca, float* cb, size_t begin, size_t end) {
   auto lo = [](uint32_t p) { return static_cast<int32_t>(static_cast<int16_t>(p & 0xffffu)); };
   auto hi = [](uint32_t p) { return static_cast<int32_t>(p) >> 16; };
   for (size_t k = begin; k < end; ++k) {
@@ -84,12 +81,10 @@ __attribute__((target("avx2"))) inline __m256i lerp4(const uint32_t* top, const 
                           _mm256_mullo_epi32(bot_v, wy));
 }
 
-__attribute__((target("avx2"))) void rectifyAvx2(const RemapTable& table, const uint32_t* src,
-                                                 float scale, float* ca, float* cb, size_t begin,
-                                                 size_t end) {
-  const uint32_t* bot = src + table.src_width;
-  const int32_t* idx = table.index.data();
-  const uint16_t* fr = table.frac.data();
+__attribute__((target("avx2"))) void rectifyAvx2(const int32_t* idx, const uint16_t* fr, int stride,
+                                                 const uint32_t* src, float scale, float* ca, float* cb,
+                                                 size_t begin, size_t end) {
+  const uint32_t* bot = src + stride;
   const __m256 s = _mm256_set1_ps(scale);
   // a0 a1 a2 a3 | b0 b1 b2 b3 within one 4-cell result.
   const __m256i split = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
@@ -103,15 +98,15 @@ __attribute__((target("avx2"))) void rectifyAvx2(const RemapTable& table, const 
     _mm256_storeu_ps(ca + k, _mm256_mul_ps(_mm256_cvtepi32_ps(a), s));
     _mm256_storeu_ps(cb + k, _mm256_mul_ps(_mm256_cvtepi32_ps(b), s));
   }
-  rectifyScalar(table, src, scale, ca, cb, k, end);
+  rectifyScalar(idx, fr, stride, src, scale, ca, cb, k, end);
 }
 
 #endif
 
 }  // namespace
 
-void rectifyChromaRows(const RemapTable& table, const uint32_t* src, float gain, float* ca, float* cb,
-                       int y_begin, int y_end) {
+void rectifyChromaCells(const int32_t* index, const uint16_t* frac, int stride, const uint32_t* src, float gain,
+                        float* ca, float* cb, size_t n) {
   // The interpolated value carries 2^16 from the weights.
   const float scale = gain * (1.0f / 65536.0f);
 #if defined(__x86_64__)
@@ -119,9 +114,15 @@ void rectifyChromaRows(const RemapTable& table, const uint32_t* src, float gain,
 #else
   const auto span = rectifyScalar;
 #endif
+  span(index, frac, stride, src, scale, ca, cb, 0, n);
+}
+
+void rectifyChromaRows(const RemapTable& table, const uint32_t* src, float gain, float* ca, float* cb,
+                       int y_begin, int y_end) {
   const size_t begin = static_cast<size_t>(y_begin) * table.width;
   const size_t end = static_cast<size_t>(y_end) * table.width;
-  span(table, src, scale, ca, cb, begin, end);
+  rectifyChromaCells(table.index.data() + begin, table.frac.data() + begin, table.src_width, src, gain,
+                     ca + begin, cb + begin, end - begin);
 }
 
 }  // namespace dv
