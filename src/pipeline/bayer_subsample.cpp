@@ -212,6 +212,14 @@ void chromaRowsT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* out, size_t
   }
 }
 
+// Bytes [b, e) of an image row and of the row below it into the cache.
+inline void prefetchRun(const uint8_t* row, int b, int e, size_t step) {
+  for (int x = b & ~63; x < e; x += 64) {
+    __builtin_prefetch(row + x);
+    __builtin_prefetch(row + step + x);
+  }
+}
+
 // Same rows written transposed (sample (i, j) at (i - oi) * stride + j - oj):
 // blocks of 16 rows go through a small buffer, then out as one 64-byte run
 // per column.
@@ -230,6 +238,9 @@ void chromaRowsTransposedT(const cv::Mat& raw, const ChromaFixed& k, uint32_t* o
       for (int r = 0; r < rows; ++r) {
         const int j = j0 + r;
         const int rj = std::clamp(j + rdy, 0, hs - 1), bj = std::clamp(j + bdy, 0, hs - 1);
+        // A narrow box reads short runs of many image rows, which the
+        // hardware prefetcher does not follow: ask for the next block's.
+        if (j + kRows < hs) prefetchRun(raw.ptr<uint8_t>(2 * (j + kRows)), 2 * i0, 2 * i1 + 2, raw.step[0]);
         chromaRow<RX, RY, BX, BY>(raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * rj + RY),
                                   raw.ptr<uint8_t>(2 * j + BY), raw.ptr<uint8_t>(2 * bj + BY),
                                   raw.ptr<uint8_t>(2 * j + RY), raw.ptr<uint8_t>(2 * j + 1 - RY), ws,
