@@ -87,6 +87,18 @@ struct DetectorOptions {
   // balls.
   bool report_guessed_ids = true;
 
+  // --- weak peaks as side blobs (weak_sides.h) ---
+  // A pattern of a center blob and at least two side blobs may take weak
+  // peaks (BlobList::weak) for its missing side blobs, each within this
+  // distance of its predicted slot, when the whole pattern then fits with a
+  // score (eq. 5.21) of at least min_weak_fit.
+  bool weak_sides = true;
+  double weak_side_tolerance = 10;  // mm
+  double min_weak_fit = 0.5;        // all five blobs within 10 mm of the fit
+  // A weak side's marker color counts only when its distance to the nearer
+  // side color is below this fraction of its distance to the other.
+  double weak_color_margin = 0.7;
+
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color
   double reference_force = 0.1;  // f_r, pull to the reference color

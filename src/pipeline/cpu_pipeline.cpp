@@ -73,6 +73,7 @@ struct CpuPipeline::Impl {
   // the same blobs indexed by place.
   std::vector<GridPx> near;
   BlobSpacing reach;
+  std::vector<std::pair<int, int>> spans;  // scratch of findPeaksNear
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -137,6 +138,7 @@ struct CpuPipeline::Impl {
                       std::max(0, opt.max_blobs) + weakCapacity());
     reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs));
     near.reserve(std::max(0, opt.max_blobs));
+    spans.reserve(256);
   }
 
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
@@ -353,14 +355,14 @@ struct CpuPipeline::Impl {
       reach.clear();
       for (const Blob& b : out.blobs) near.push_back(b.grid), reach.keep(b.grid.x, b.grid.y);
       std::sort(near.begin(), near.end(), [](const GridPx& a, const GridPx& b) { return a.y < b.y; });
-      forParts(gh, [&](int p, int b, int e) {
-        thread_local std::vector<std::pair<int, int>> spans;  // reused
-        auto& list = candidates[p];
-        const int n = findPeaksNear(score.data(), peak_mask.data(), gw, gh, margin, low * kEnergyFloor,
-                                    near.data(), static_cast<int>(near.size()), reach, spans, list.data(), 0,
-                                    static_cast<int>(list.size()), b, e);
-        candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
-      });
+      // On this thread: the discs around the blobs are a small part of the
+      // grid, less work than waking the pool again.
+      auto& list = candidates[0];
+      const int n = findPeaksNear(score.data(), peak_mask.data(), gw, gh, margin, low * kEnergyFloor, near.data(),
+                                  static_cast<int>(near.size()), reach, spans, list.data(), 0,
+                                  static_cast<int>(list.size()), 0, gh);
+      std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
+      candidate_counts[0] = ratioTest(list.data(), n, low, threshold);
       // Up to max_weak_blobs weak peaks, strongest first (second maxima of
       // blobs do not count).
       select(gather(std::numeric_limits<size_t>::max()), out.weak,
