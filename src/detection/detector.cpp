@@ -560,11 +560,26 @@ struct Detector::Impl {
   }
 
   // Refit at the team's height (pattern offsets are mm on the robot top).
+  // Weak peaks sit less exactly than blobs: where the center and three side
+  // blobs are blobs, those alone give the pose.
   void refit(Hypothesis& h) const {
     FieldMm pts[kPatternSlots];
+    int slots[kPatternSlots];
     const int t = h.team == Team::Yellow ? 0 : 1;
-    for (int i = 0; i < h.n; ++i) pts[i] = blobs[h.blob[i]].at_team[t];
-    h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+    const bool blobs_only = weakCount(h) > 0 && h.n - weakCount(h) >= kPatternSlots - 1;
+    int n = 0;
+    for (int i = 0; i < h.n; ++i) {
+      if (blobs_only && blobs[h.blob[i]].weak) continue;
+      pts[n] = blobs[h.blob[i]].at_team[t];
+      slots[n++] = h.slot[i];
+    }
+    h.pose = fitPattern(pts, slots, n, opt.score_scale);
+  }
+
+  int weakCount(const Hypothesis& h) const {
+    int n = 0;
+    for (int i = 0; i < h.n; ++i) n += blobs[h.blob[i]].weak;
+    return n;
   }
 
   int nearestOf(const ColorVec& c, int a, int b) const {
@@ -1004,7 +1019,7 @@ struct Detector::Impl {
     dropImplausibleCenters();
     classifyRobots();
     for (auto& r : robots) {
-      if (opt.robot_height_yellow != opt.robot_height_blue) refit(r);
+      if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
     }
     if (opt.tracking) {
       if (!have_frame) tracks.clear();
