@@ -81,7 +81,8 @@ struct DetectorOptions {
   // The protocol has no unknown id and a wrong one is a false robot: such
   // guesses were right 7 of 14 times over the scene sweep, 3 of 6 in the
   // side view, 33 of 42 in the 1224 x 1024 presets (7 of 7 under a blue
-  // white balance, 24 of 33 in the dark and noisy frames). Reported by
+  // white balance, 24 of 33 in the dark and noisy frames), measured before
+  // weak peaks filled most such missing blobs (weak_sides). Reported by
   // default, as teams expect every robot; `run --no-guessed-ids` puts
   // precision first. Its blobs are claimed either way, so they never become
   // balls.
