@@ -28,6 +28,9 @@ namespace {
 // until line crossings score like blobs.) Local differences in light (sun
 // patches, shadows) are handled by the ratio score (score_windows.h).
 
+// Blobs above which the weak-peak scan is shared out to the pool.
+constexpr size_t kWeakScanOnPoolAbove = 150;
+
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -73,7 +76,7 @@ struct CpuPipeline::Impl {
   // the same blobs indexed by place.
   std::vector<GridPx> near;
   BlobSpacing reach;
-  std::vector<std::pair<int, int>> spans;  // scratch of findPeaksNear
+  std::vector<std::vector<std::pair<int, int>>> spans;  // scratch of findPeaksNear, per part
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -138,7 +141,8 @@ struct CpuPipeline::Impl {
                       std::max(0, opt.max_blobs) + weakCapacity());
     reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs));
     near.reserve(std::max(0, opt.max_blobs));
-    spans.reserve(256);
+    spans.assign(parts, {});
+    for (auto& v : spans) v.reserve(256);
   }
 
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
@@ -355,14 +359,19 @@ struct CpuPipeline::Impl {
       reach.clear();
       for (const Blob& b : out.blobs) near.push_back(b.grid), reach.keep(b.grid.x, b.grid.y);
       std::sort(near.begin(), near.end(), [](const GridPx& a, const GridPx& b) { return a.y < b.y; });
-      // On this thread: the discs around the blobs are a small part of the
-      // grid, less work than waking the pool again.
-      auto& list = candidates[0];
-      const int n = findPeaksNear(score.data(), peak_mask.data(), gw, gh, margin, low * kEnergyFloor, near.data(),
-                                  static_cast<int>(near.size()), reach, spans, list.data(), 0,
-                                  static_cast<int>(list.size()), 0, gh);
+      // Few blobs: on this thread, as their discs are a small part of the
+      // grid (less work than waking the pool again); many (noisy carpet):
+      // band by band on the pool.
+      auto weakRows = [&](int p, int b, int e) {
+        auto& list = candidates[p];
+        const int n = findPeaksNear(score.data(), peak_mask.data(), gw, gh, margin, low * kEnergyFloor,
+                                    near.data(), static_cast<int>(near.size()), reach, spans[p], list.data(), 0,
+                                    static_cast<int>(list.size()), b, e);
+        candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
+      };
       std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
-      candidate_counts[0] = ratioTest(list.data(), n, low, threshold);
+      if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
+      else forParts(gh, weakRows);
       // Up to max_weak_blobs weak peaks, strongest first (second maxima of
       // blobs do not count).
       select(gather(std::numeric_limits<size_t>::max()), out.weak,
