@@ -3,9 +3,10 @@
 // (strict on the left/top, non-strict on the right/bottom, so a plateau gives
 // one peak) where the peak mask allows; their reported score is the ratio of
 // the raw score to (mean gradient energy in the window + floor), kept above
-// `threshold`; then quadratic peak interpolation on the raw score and the
-// mean bilinear RGB over the disc of `color_radius` cells, read from the raw
-// frame (co-sited samples, as sampleRgbAt in pipeline/bayer_subsample.cpp
+// `threshold` (the weak threshold where weak peaks are wanted: the host
+// tells blobs from weak peaks by the ratio); then quadratic peak
+// interpolation on the raw score and the mean bilinear RGB over the disc of
+// `color_radius` cells, read from the raw frame (co-sited samples, as sampleRgbAt in pipeline/bayer_subsample.cpp
 // or fullBayerRgbAt in pipeline/bayer_full.cpp). Peaks are appended to a
 // compact list (after the counters of the results buffer) through an
 // atomic counter; the host orders them by score.

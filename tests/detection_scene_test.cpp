@@ -79,17 +79,25 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   EXPECT_GE(s.detectableRecall(), 0.97);
   EXPECT_GE(s.detectableBallRecall(), 0.97);
   // The overall bar. The side view does not reach it for robots (recall
-  // 0.72 over the 6 placements of DV_SCENE_FULL=1, every robot whose blobs
-  // reached the detector found; robots missing a side blob are reported with
-  // a guessed id, 3 of those 6 ids wrong; 0.62 with --no-guessed-ids). Its mosaic is sampled at every pixel
-  // (bayer_sampling.h), which did not change recall (0.73 with 2x2
-  // subsampling; 0.72..0.73 on 3.65, 4.5 and 5.6 mm grids): the robots
-  // lost are either partly hidden behind a nearer robot (no blob at any
-  // threshold) or beyond ~3.7 m, where a side blob is 3-4 pixels tall, less
-  // than two periods of the red and blue sites, and lens blur stretches it
-  // along the viewing direction into an ellipse the round score windows miss.
+  // 0.75 over the 6 placements of DV_SCENE_FULL=1, 0.72 before weak peaks;
+  // every robot whose blobs reached the detector found). Far side blobs
+  // that peak at all mostly score 0.08..0.24 and are taken as weak peaks
+  // where the pattern predicts them (detection/weak_sides.h). Of the 15
+  // robots still lost, 14 show at most two side blobs even counting peaks
+  // down to 0.06: 5 within 3.2 m are partly hidden behind nearer robots, 9
+  // are 4.8..7.1 m away, where a side blob is 3-4 pixels tall, less than
+  // two periods of the red and blue sites, and lens blur stretches it along
+  // the viewing direction into an ellipse the round score windows miss
+  // (score windows stretched along the viewing direction would be needed);
+  // the 15th shows one side blob and two weak peaks. Its
+  // mosaic is sampled at every pixel (bayer_sampling.h), which did not
+  // change recall (0.73 with 2x2 subsampling; 0.72..0.73 on 3.65, 4.5 and
+  // 5.6 mm grids, before weak peaks). Robots missing a side blob are
+  // reported with a guessed id (3 of 6 wrong before weak peaks, 2 of 45
+  // ids wrong now).
   const bool side = std::string(GetParam()) == "side_view";
-  EXPECT_GE(s.recall(), side ? 0.7 : 0.97);
+  EXPECT_GE(s.recall(), side ? 0.75 : 0.97);
+  EXPECT_GE(s.idAccuracy(), side ? 0.95 : 0.99);
   EXPECT_GE(s.ballRecall(), 0.97);
 }
 
@@ -102,20 +110,18 @@ class HarshScenesHalfResolution : public ::testing::TestWithParam<const char*> {
 TEST_P(HarshScenesHalfResolution, RobotsAndBallWithTheSameDefaults) {
   const SceneScore s = scorePlacements(GetParam(), fullRun() ? 6 : 3, true);
   std::printf("%s\n", s.summary(std::string(GetParam()) + " 1224x1024").c_str());
-  // Dark and noisy at this resolution is the one bar not reached: its side
-  // blobs are both blurred and noisy and score around the threshold, and a
-  // lower threshold lets noise blobs through (0.21: recall 0.96, precision
-  // 0.97). Measured 0.90 (guessed ids reported) over the 6 placements of DV_SCENE_FULL=1 with the
-  // mosaic sampled at every pixel (0.82 with 2x2 subsampling): the renderer's
-  // noise is per pixel, so at half the resolution each millimetre of field
-  // holds a quarter of the samples, and twice the noise, of 2448 x 2048.
-  // Robots missing a side blob are reported with a guessed id (detector.h,
-  // report_guessed_ids). Over the 6 placements guesses were right in 2/2
-  // (uneven light), 7/7 (blue white balance) and 24/33 (dark, noisy);
-  // leaving them out gives recall 0.97, 0.93 and 0.55 at id-aware
-  // precision 1.00, where guesses give 0.90 in the dark.
-  const bool dark = std::string(GetParam()) == "dark_noisy";
-  EXPECT_GE(s.recall(), dark ? 0.85 : 0.97);
+  // Dark and noisy at this resolution: its side blobs are both blurred and
+  // noisy and score around the threshold, and a lower threshold lets noise
+  // blobs through (0.21: recall 0.96, precision 0.97). The renderer's noise
+  // is per pixel, so at half the resolution each millimetre of field holds a
+  // quarter of the samples, and twice the noise, of 2448 x 2048. Taken as
+  // weak peaks only where a pattern of blobs predicts them
+  // (detection/weak_sides.h), they give recall 1.00, id 0.99, precision
+  // 1.00 over the 6 placements of DV_SCENE_FULL=1 (blobs alone: recall
+  // 0.90, id 0.90, with robots missing a side blob reported with a guessed
+  // id, right in 24 of 33).
+  EXPECT_GE(s.recall(), 0.97);
+  EXPECT_GE(s.idAccuracy(), 0.97);
   EXPECT_GE(s.precision(), 0.98);
   EXPECT_GE(s.ballRecall(), 0.97);
   EXPECT_GE(s.ballPrecision(), 0.98);

@@ -58,6 +58,7 @@ struct TrueRobot {
   double orientation = 0;
   double height = 140;
   std::array<bool, 5> present = {true, true, true, true, true};  // center, FL, BL, BR, FR
+  std::array<bool, 5> weak = {};  // present as a weak peak (BlobList::weak) only
 };
 
 class SceneBuilder {
@@ -70,8 +71,9 @@ class SceneBuilder {
   static constexpr ColorRef kYellow{230, 210, 40}, kBlue{40, 80, 200}, kGreen{60, 200, 80},
       kPink{240, 90, 180}, kOrange{255, 120, 20}, kCarpet{40, 110, 50}, kWhite{235, 235, 235};
 
-  // A blob whose true center is `p`; stored where its ray meets z = 150.
-  void addBlob(const FieldPoint& p, ColorRef rgb, float score) {
+  // A blob whose true center is `p`; stored where its ray meets z = 150 (in
+  // the weak peaks when `weak`).
+  void addBlob(const FieldPoint& p, ColorRef rgb, float score, bool weak = false) {
     const Eigen::Vector3d c = camera_.position();
     const double s = (c.z() - list.plane_height) / (c.z() - p.z);
     std::normal_distribution<double> n(0, pos_noise_);
@@ -83,19 +85,20 @@ class SceneBuilder {
     b.score = score * sv(rng_);
     const ColorRef c2 = render(rgb);
     b.rgb[0] = c2.r, b.rgb[1] = c2.g, b.rgb[2] = c2.b;
-    list.blobs.push_back(b);
+    (weak ? list.weak : list.blobs).push_back(b);
   }
 
   void addRobot(const TrueRobot& r) {
     const auto colors = patternColors(r.id);
     const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
     if (r.present[0])
-      addBlob({r.position.x, r.position.y, r.height}, r.team == Team::Yellow ? kYellow : kBlue, 1.0f);
+      addBlob({r.position.x, r.position.y, r.height}, r.team == Team::Yellow ? kYellow : kBlue,
+              r.weak[0] ? 0.18f : 1.0f, r.weak[0]);
     for (int i = 0; i < 4; ++i) {
       if (!r.present[i + 1]) continue;
       const FieldMm o = RobotPatternGeometry::kSideBlobs[i];
       addBlob({r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height},
-              colors[i] == MarkerColor::Green ? kGreen : kPink, 0.9f);
+              colors[i] == MarkerColor::Green ? kGreen : kPink, r.weak[i + 1] ? 0.18f : 0.9f, r.weak[i + 1]);
     }
     robots.push_back(r);
   }

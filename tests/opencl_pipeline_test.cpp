@@ -53,6 +53,13 @@ PaintedScene robotScene() {
   addRobot(s, {820.3, 610.7}, 0.4, test::kYellow, sides);
   addRobot(s, {1170.9, 380.2}, -2.1, test::kBlue, sides);
   s.discs.push_back({{1150.4, 700.6}, 21.5, test::kOrange});
+  // Faint discs (little chroma contrast to the carpet) around the ball,
+  // within the weak reach of its blob, that score between the weak
+  // threshold and the threshold: weak peaks on both backends.
+  s.discs.push_back({{1215.2, 735.4}, 20, {46, 119, 52}});
+  s.discs.push_back({{1095.7, 745.3}, 20, {52, 117, 61}});
+  s.discs.push_back({{1150.6, 620.9}, 20, {49, 122, 54}});
+  s.discs.push_back({{1185.1, 770.5}, 20, {56, 132, 56}});
   // A field line crossing, which must not become a blob on either backend.
   s.bands.push_back({{600, 300}, {1400, 300}, 10});
   s.bands.push_back({{1000, 100}, {1000, 900}, 10});
@@ -66,23 +73,43 @@ CameraModel smallCamera(BayerPattern bayer) {
                                      : topDownCamera(1000, 500, 150 + 2000, 1000, 640, 480);
 }
 
-// Blob lists agree: same count, and each OpenCL blob has a CPU blob within
+// Each blob of `from` with a score clear of [lo, hi]'s ends (1e-3 relative,
+// where the backends' sums may round either way) has a blob in `to` within
 // 0.05 grid cells whose score agrees within 1e-3 relative and color within
-// half a level.
-void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string& what) {
-  ASSERT_EQ(cpu.blobs.size(), ocl.blobs.size()) << what;
-  for (const auto& b : ocl.blobs) {
+// half a level; returns how many were compared.
+int expectCounterparts(const std::vector<Blob>& from, const std::vector<Blob>& to, double lo, double hi,
+                       const std::string& what) {
+  int compared = 0;
+  for (const auto& b : from) {
+    if (std::abs(b.score - lo) <= 1e-3 * lo || std::abs(b.score - hi) <= 1e-3 * hi) continue;
+    ++compared;
     const Blob* best = nullptr;
     double best_d = 1e9;
-    for (const auto& c : cpu.blobs) {
+    for (const auto& c : to) {
       const double d = std::hypot(c.grid.x - b.grid.x, c.grid.y - b.grid.y);
       if (d < best_d) best_d = d, best = &c;
     }
-    ASSERT_NE(best, nullptr);
+    if (!best) {
+      ADD_FAILURE() << what << ": no counterpart for the blob at " << b.grid.x << "," << b.grid.y;
+      continue;
+    }
     EXPECT_LE(best_d, 0.05) << what << ": blob at " << b.grid.x << "," << b.grid.y;
     EXPECT_LE(std::abs(best->score - b.score), 1e-3 * std::abs(best->score)) << what;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(best->rgb[c], b.rgb[c], 0.5) << what;
   }
+  return compared;
+}
+
+// Blob lists agree: the same blobs, and the same weak peaks (either way, so
+// none is missing on one side), apart from peaks whose ratio lies on a
+// threshold within rounding.
+void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string& what,
+                     const PipelineOptions& opt = PipelineOptions{}) {
+  ASSERT_EQ(cpu.blobs.size(), ocl.blobs.size()) << what;
+  expectCounterparts(ocl.blobs, cpu.blobs, 0, 1e9, what);
+  const int a = expectCounterparts(cpu.weak, ocl.weak, opt.weak_threshold, opt.threshold, what + " (weak)");
+  const int b = expectCounterparts(ocl.weak, cpu.weak, opt.weak_threshold, opt.threshold, what + " (weak)");
+  EXPECT_EQ(a, b) << what;
 }
 
 TEST(OpenClRuntime, ListsDevicesAndNamesThemWhenNothingMatches) {
@@ -237,6 +264,7 @@ TEST(OpenClStages, EveryStageMatchesTheCpuFunction) {
 
   // 6. Peaks: the whole-frame blob lists.
   EXPECT_GE(cpu_blobs.blobs.size(), 11u);  // 10 pattern blobs and the ball
+  EXPECT_GE(cpu_blobs.weak.size(), 1u);    // faint discs
   expectSameBlobs(cpu_blobs, ocl_blobs, "robot scene");
 }
 
@@ -328,6 +356,7 @@ TEST_P(OpenClFrames, BlobsMatchTheCpuReference) {
     ASSERT_TRUE(cpu.process(raw, a)) << cpu.lastError();
     ASSERT_TRUE(ocl.process(raw, b)) << ocl.lastError();
     EXPECT_GE(a.blobs.size(), 5u) << p.name;
+    EXPECT_GE(a.weak.size(), 1u) << p.name;  // a faint disc
     expectSameBlobs(a, b, p.name);
   }
 }
@@ -361,7 +390,21 @@ TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
   ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
   ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
   EXPECT_GE(a.blobs.size(), 10u);
+  EXPECT_GE(a.weak.size(), 5u);  // carpet texture and noise near blobs
   expectSameBlobs(a, b, "rendered scene");
+  {
+    // A weak capacity that binds: both keep the same strongest few.
+    PipelineOptions capped = opt;
+    capped.max_weak_blobs = 4;
+    CpuPipeline cpu4(cam, spec.field, capped);
+    OpenClPipeline ocl4(cam, spec.field, capped, *testDevice());
+    BlobList a4, b4;
+    ASSERT_TRUE(cpu4.process(frame.image, a4)) << cpu4.lastError();
+    ASSERT_TRUE(ocl4.process(frame.image, b4)) << ocl4.lastError();
+    EXPECT_LE(a4.weak.size(), 4u);
+    EXPECT_GE(a4.weak.size(), 3u);  // one of the four may be a second maximum of a blob
+    expectSameBlobs(a4, b4, "rendered scene, 4 weak peaks at most", capped);
+  }
 
   DetectorOptions dopt;
   dopt.tracking = false;

@@ -328,3 +328,46 @@ TEST(PipelineDebug, ViewsHaveTheGridSize) {
 
 }  // namespace
 }  // namespace dv
+
+namespace dv {
+namespace {
+
+// Hysteresis on blobs: a faint disc (little chroma contrast to the carpet)
+// 70 mm from a blob is a weak peak; the same faint disc far from every blob
+// is nothing; neither is a blob.
+TEST(PipelineBlobs, FaintDiscIsAWeakPeakOnlyNearABlob) {
+  const auto cam = test::topDownCamera(1000, 500, 150 + 2000, 1000, 640, 480);
+  PaintedScene s;
+  const FieldMm ball{800.3, 500.6}, near{868.1, 524.9}, far{1400.2, 820.7};
+  const test::Color faint{47, 119, 54};  // scores 0.18
+  s.discs.push_back({ball, 21.5, test::kOrange});
+  s.discs.push_back({near, 20, faint});
+  s.discs.push_back({far, 20, faint});
+  const cv::Mat raw = s.render(cam, BayerPattern::RGGB);
+  for (bool weak_on : {true, false}) {
+    PipelineOptions opt;
+    if (!weak_on) opt.weak_threshold = 0;
+    CpuPipeline pipe(cam, FieldModel::divisionB(), opt);
+    BlobList blobs;
+    ASSERT_TRUE(pipe.process(raw, blobs)) << pipe.lastError();
+    ASSERT_EQ(blobs.blobs.size(), 1u);
+    EXPECT_LT(std::hypot(blobs.blobs[0].position.x - ball.x, blobs.blobs[0].position.y - ball.y), 2);
+    if (!weak_on) {
+      EXPECT_TRUE(blobs.weak.empty());
+      continue;
+    }
+    int near_hits = 0;
+    for (const auto& w : blobs.weak) {
+      EXPECT_GT(std::hypot(w.position.x - far.x, w.position.y - far.y), 50);
+      if (std::hypot(w.position.x - near.x, w.position.y - near.y) < 3) {
+        ++near_hits;
+        EXPECT_GT(w.score, opt.weak_threshold);
+        EXPECT_LE(w.score, opt.threshold);
+      }
+    }
+    EXPECT_EQ(near_hits, 1);
+  }
+}
+
+}  // namespace
+}  // namespace dv

@@ -124,10 +124,11 @@ TEST(SceneCli, OutsiderSceneThroughSynthRunEvalAgreesWithTheLibrary) {
   EXPECT_EQ(pgm["balls"]["detected"].get<int>(), lib.balls_detected);
   // Every robot whose blobs reached the detector is found. The mosaic's 2x2
   // cells are 14 mm on the far side of this tilted 1224 x 1024 view, where
-  // side blobs fall below the blob threshold (34 of 40 robots complete); the
-  // PNG's full-resolution RGB keeps them all.
+  // side blobs fall below the blob threshold (34 of 40 robots complete); as
+  // weak peaks confirmed by the pattern they bring recall to 0.90 (36 of
+  // 40; 0.85 from blobs alone); the PNG's full-resolution RGB keeps them all.
   EXPECT_GE(lib.detectableRecall(), 0.99);
-  EXPECT_GE(pgm["robots"]["recall"].get<double>(), 0.8);
+  EXPECT_GE(pgm["robots"]["recall"].get<double>(), 0.875);
   EXPECT_GE(png["robots"]["recall"].get<double>(), 0.95);
   for (const auto* o : {&pgm, &png}) {
     EXPECT_GE((*o)["robots"]["precision"].get<double>(), 0.98);

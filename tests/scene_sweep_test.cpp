@@ -274,12 +274,14 @@ TEST_P(SceneSweep, SameDefaultsHoldOutsideThePresets) {
     EXPECT_GE(s.ballPrecision(), 0.98);
     // Overall recall also depends on the pixel stage delivering the side
     // blobs. At 1224 x 1024 a Bayer cell is 11.4 mm and green side blobs,
-    // which meet the green carpet at the robot's rim, fall below the blob
-    // threshold about 12 % of the time (pink: 1 %); a robot missing two is
-    // lost, and one missing one gets a guessed id (right 7 times in 14 over
-    // the sweep). Pale colors also lose the pale pink blobs (0.77 over the 4
-    // placements, of which only 0.53 had the right id).
-    EXPECT_GE(s.recall(), half ? 0.75 : 0.95);
+    // which meet the green carpet at the robot's rim, often score just below
+    // the blob threshold, and pale pink ones too; the detector takes them as
+    // weak peaks where a pattern of blobs predicts them (weak_sides.h). Over
+    // the 4 placements of DV_SCENE_FULL=1 the lowest recall is 0.909 (25°
+    // tilt; 0.852 before weak peaks), pale colors 0.977 (0.807), and at
+    // 2448 x 2048 0.977 (light patches); 0.818 in the one CI placement of
+    // the 25° tilt.
+    EXPECT_GE(s.recall(), half ? 0.8 : 0.97);
   }
 }
 

@@ -11,6 +11,7 @@
 #include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
+#include "detection/weak_sides.h"
 
 namespace dv {
 namespace {
@@ -22,6 +23,12 @@ constexpr int kMaxNeighbors = 10;       // side blob candidates per center
 constexpr int kMaxSlotCandidates = 3;   // blobs per predicted slot (tracking)
 constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs
 constexpr double kFourBlobPenalty = 0.5;  // rank factor for a missing side blob
+// Patterns completed with weak peaks rank this much lower per weak side.
+constexpr double kWeakSideRankStep = 0.1;
+// Two side blobs a weak completion starts from: their distance to the center
+// blob (mm) and their angle around it (rad) near the pattern's.
+constexpr double kWeakPairRingTolerance = 15;
+constexpr double kWeakPairAngleTolerance = 0.35;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
 constexpr int kSceneCheckMinRobots = 4;
@@ -36,6 +43,7 @@ struct FrameBlob {
   float rgb[3] = {0, 0, 0};
   float score = 0;
   bool valid = false;
+  bool weak = false;  // a weak peak (BlobList::weak), listed after the blobs
   int robot = -1;  // accepted robot using this blob
 };
 
@@ -94,6 +102,10 @@ struct BallCandidate {
 };
 
 double sq(double v) { return v * v; }
+double slotAngle(int slot) {
+  const FieldMm o = patternOffset(slot);
+  return std::atan2(o.y, o.x);
+}
 double dist(const FieldMm& a, const FieldMm& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 }  // namespace
@@ -112,7 +124,9 @@ struct Detector::Impl {
   ColorMap color_map;                 // references -> this camera's colors
 
   std::vector<FrameBlob> blobs;
-  BlobIndex index;
+  BlobIndex index;       // the blobs
+  BlobIndex weak_index;  // the weak peaks, blob n_strong + i at point i
+  int n_strong = 0;
   std::vector<Hypothesis> hyps;
   std::vector<Hypothesis> robots;  // accepted
   std::vector<RobotTrack> tracks;
@@ -136,7 +150,7 @@ struct Detector::Impl {
                                          &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
                                          &opt.ref_white};
     for (int k = 0; k < kNumClasses; ++k) classes[k].reference = feature(*refs[k]);
-    blobs.reserve(1024);
+    blobs.reserve(4096);
     hyps.reserve(1024);
     robots.reserve(64);
     tracks.reserve(64);
@@ -192,10 +206,17 @@ struct Detector::Impl {
   void prepare(const BlobList& list) {
     blobs.clear();
     auto& pts = index.points();
+    auto& weak_pts = weak_index.points();
     pts.clear();
+    weak_pts.clear();
+    n_strong = static_cast<int>(list.blobs.size());
     const double z0 = list.plane_height;
-    for (const Blob& b : list.blobs) {
+    const size_t n_weak = opt.weak_sides ? list.weak.size() : 0;
+    for (size_t i = 0; i < list.blobs.size() + n_weak; ++i) {
+      const bool weak = i >= list.blobs.size();
+      const Blob& b = weak ? list.weak[i - list.blobs.size()] : list.blobs[i];
       FrameBlob f;
+      f.weak = weak;
       f.valid = alongRay(b.position, z0, ref_height, f.at_ref) &&
                 alongRay(b.position, z0, opt.robot_height_yellow, f.at_team[0]) &&
                 alongRay(b.position, z0, opt.robot_height_blue, f.at_team[1]) &&
@@ -206,15 +227,17 @@ struct Detector::Impl {
       f.score = b.score;
       blobs.push_back(f);
       // Invalid blobs are put far away so that no query finds them.
-      pts.push_back(f.valid ? f.at_ref : FieldMm{1e12, 1e12});
+      (weak ? weak_pts : pts).push_back(f.valid ? f.at_ref : FieldMm{1e12, 1e12});
     }
     index.build();
+    if (!weak_pts.empty()) weak_index.build();
   }
 
   // ------------------------------------------- position based hypotheses
   void findHypotheses() {
     hyps.clear();
-    const int nb = static_cast<int>(blobs.size());
+    const int nb = n_strong;
+    const bool weak_on = !weak_index.points().empty();
     std::array<int, 64> nbr;
     std::array<double, 64> ang;
     std::array<double, 64> dev;
@@ -231,7 +254,7 @@ struct Detector::Impl {
         dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
         ++k;
       }
-      if (k < 3) continue;
+      if (k < (weak_on ? 1 : 3)) continue;
       if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
         for (int a = 0; a < kMaxNeighbors; ++a) {
           int best = a;
@@ -293,7 +316,79 @@ struct Detector::Impl {
                 consider(pick, 3, slots);
               }
       }
+      if (weak_on && !(best.rank > 0 && best.n == kPatternSlots)) completeWithWeak(c, nbr.data(), k, best);
       if (best.rank > 0) hyps.push_back(best);
+    }
+  }
+
+  // Weak peaks for the side blobs a center's pattern lacks (weak_sides.h):
+  // the missing slot of its best three-side pattern; else the missing slots
+  // of two side blobs that fit the pattern tightly with the center (three
+  // or four sides in all); else, from one side blob, all three others. Ranks
+  // are a little below those of patterns of blobs alone; `best` is replaced
+  // when one ranks higher.
+  void completeWithWeak(int c, const int* nbr, int k, Hypothesis& best) {
+    const FieldMm cp = blobs[c].at_ref;
+    if (weak_index.within(cp, opt.side_search_radius).empty()) return;
+    // The pattern of n blobs (slots given) at `pose`, with weak peaks in its
+    // missing slots; at least `min_n` blobs in all.
+    auto tryPattern = [&](const int* blob, const int* slot, int n, const PatternPose& pose, int min_n) {
+      unsigned filled = 0;
+      for (int i = 0; i < n; ++i) filled |= 1u << slot[i];
+      int found[kPatternSlots];
+      double error[kPatternSlots];
+      const int n_weak = findWeakSlots(pose, filled, weak_index, opt.weak_side_tolerance, found, error);
+      if (n_weak == 0 || n + n_weak < min_n) return;
+      Hypothesis h;
+      h.n = 0;
+      FieldMm pts[kPatternSlots];
+      for (int i = 0; i < n; ++i) h.blob[h.n] = blob[i], h.slot[h.n] = slot[i], pts[h.n++] = blobs[blob[i]].at_ref;
+      for (int s = 0; s < kPatternSlots; ++s) {
+        if (found[s] < 0) continue;
+        const int b = n_strong + found[s];
+        h.blob[h.n] = b, h.slot[h.n] = s, pts[h.n++] = blobs[b].at_ref;
+      }
+      h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+      if (h.pose.score < opt.min_weak_fit) return;
+      h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kFourBlobPenalty) * (1 - kWeakSideRankStep * n_weak);
+      if (h.rank > best.rank) best = h;
+    };
+    auto onRing = [&](const FieldMm& p) {
+      return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
+    };
+    auto angleAround = [&](const FieldMm& p) { return std::atan2(p.y - cp.y, p.x - cp.x); };
+    if (best.rank > 0 && best.n == kPatternSlots - 1)
+      tryPattern(best.blob, best.slot, best.n, best.pose, kPatternSlots);
+    if (best.rank > 0 && best.n == kPatternSlots) return;
+    // Two side blobs: on the ring, as far apart in angle as two slots.
+    for (int a = 0; a < k; ++a) {
+      const FieldMm pa = blobs[nbr[a]].at_ref;
+      if (!onRing(pa)) continue;
+      for (int b = a + 1; b < k; ++b) {
+        const FieldMm pb = blobs[nbr[b]].at_ref;
+        if (!onRing(pb)) continue;
+        const double seen = wrapAngle(angleAround(pb) - angleAround(pa));
+        for (int sa = 1; sa < kPatternSlots; ++sa)
+          for (int sb = 1; sb < kPatternSlots; ++sb) {
+            if (sa == sb || std::abs(wrapAngle(seen - (slotAngle(sb) - slotAngle(sa)))) > kWeakPairAngleTolerance)
+              continue;
+            const int blob[3] = {c, nbr[a], nbr[b]}, slot[3] = {0, sa, sb};
+            const FieldMm pts[3] = {cp, pa, pb};
+            const PatternPose pose = fitPattern(pts, slot, 3, opt.score_scale);
+            if (pose.score >= opt.min_weak_fit) tryPattern(blob, slot, 3, pose, kPatternSlots - 1);
+          }
+      }
+    }
+    if (best.rank > 0) return;
+    // One side blob: each slot it may be, the other three all weak.
+    for (int a = 0; a < k; ++a) {
+      const FieldMm pa = blobs[nbr[a]].at_ref;
+      if (!onRing(pa)) continue;
+      for (int sa = 1; sa < kPatternSlots; ++sa) {
+        const int blob[2] = {c, nbr[a]}, slot[2] = {0, sa};
+        const FieldMm pts[2] = {cp, pa};
+        tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, opt.score_scale), kPatternSlots);
+      }
     }
   }
 
@@ -383,9 +478,11 @@ struct Detector::Impl {
     }
 
     // Side blobs of all robots: green vs pink; the team colors are external.
+    // Weak peaks' colors are too noisy to learn from.
     samples.clear();
     for (const auto& r : robots)
-      for (int i = 1; i < r.n; ++i) samples.push_back(blobs[r.blob[i]].color);
+      for (int i = 1; i < r.n; ++i)
+        if (!blobs[r.blob[i]].weak) samples.push_back(blobs[r.blob[i]].color);
     labels.resize(samples.size());
     {
       const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
@@ -400,21 +497,36 @@ struct Detector::Impl {
       frame_color[kPink] = pink;
     }
 
-    // Per robot: its own side blobs, against its own center color.
+    // Per robot: its own side blobs, against its own center color; then its
+    // weak sides by the nearer of its own two side colors (or the frame's
+    // where it shows one only), when clearly nearer.
     for (auto& r : robots) {
       ColorVec local[4];
       uint8_t lab[4];
-      const int m = r.n - 1;
-      for (int i = 0; i < m; ++i) local[i] = blobs[r.blob[i + 1]].color;
+      int side_of[4];
+      int m = 0;
+      for (int i = 1; i < r.n; ++i)
+        if (!blobs[r.blob[i]].weak) side_of[m] = i, local[m++] = blobs[r.blob[i]].color;
       const ColorVec prior[2] = {frame_color[kGreen], frame_color[kPink]};
       const ColorVec ext[1] = {blobs[r.blob[0]].color};
-      twoMeans(local, m, prior, ext, 1, lab);
+      const TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
       std::array<MarkerColor, 4> colors;
       colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
       r.seen_sides = 0;
       for (int i = 0; i < m; ++i) {
-        colors[r.slot[i + 1] - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
-        r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i + 1] - 1));
+        const int slot = r.slot[side_of[i]];
+        colors[slot - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+        r.seen_sides |= static_cast<uint8_t>(1u << (slot - 1));
+      }
+      const ColorVec green = res.count[0] > 0 ? res.mean[0] : frame_color[kGreen];
+      const ColorVec pink = res.count[1] > 0 ? res.mean[1] : frame_color[kPink];
+      for (int i = 1; i < r.n; ++i) {
+        if (!blobs[r.blob[i]].weak) continue;
+        const int label = weakSideColor(blobs[r.blob[i]].color, green, pink,
+                                        static_cast<float>(opt.weak_color_margin));
+        if (label < 0) continue;
+        colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+        r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
       }
       r.colors = colors;
       r.id = patternId(colors);
@@ -423,7 +535,7 @@ struct Detector::Impl {
     // team, so when a fully seen robot of its team holds one, it is the other.
     for (auto& r : robots) {
       r.id_known = r.fullPattern();
-      if (r.fullPattern() || r.n != 4) continue;
+      if (r.fullPattern() || __builtin_popcount(r.seen_sides) != 3) continue;
       int missing = 0;
       while (r.seen_sides >> missing & 1) ++missing;
       auto alt = r.colors;
@@ -448,11 +560,26 @@ struct Detector::Impl {
   }
 
   // Refit at the team's height (pattern offsets are mm on the robot top).
+  // Weak peaks sit less exactly than blobs: where the center and three side
+  // blobs are blobs, those alone give the pose.
   void refit(Hypothesis& h) const {
     FieldMm pts[kPatternSlots];
+    int slots[kPatternSlots];
     const int t = h.team == Team::Yellow ? 0 : 1;
-    for (int i = 0; i < h.n; ++i) pts[i] = blobs[h.blob[i]].at_team[t];
-    h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+    const bool blobs_only = weakCount(h) > 0 && h.n - weakCount(h) >= kPatternSlots - 1;
+    int n = 0;
+    for (int i = 0; i < h.n; ++i) {
+      if (blobs_only && blobs[h.blob[i]].weak) continue;
+      pts[n] = blobs[h.blob[i]].at_team[t];
+      slots[n++] = h.slot[i];
+    }
+    h.pose = fitPattern(pts, slots, n, opt.score_scale);
+  }
+
+  int weakCount(const Hypothesis& h) const {
+    int n = 0;
+    for (int i = 0; i < h.n; ++i) n += blobs[h.blob[i]].weak;
+    return n;
   }
 
   int nearestOf(const ColorVec& c, int a, int b) const {
@@ -703,7 +830,8 @@ struct Detector::Impl {
     // Strength reference: the median score of this frame's robot blobs.
     score_buf.clear();
     for (const auto& r : robots)
-      for (int i = 0; i < r.n; ++i) score_buf.push_back(blobs[r.blob[i]].score);
+      for (int i = 0; i < r.n; ++i)
+        if (!blobs[r.blob[i]].weak) score_buf.push_back(blobs[r.blob[i]].score);
     double strength_ref = 0;
     if (!score_buf.empty()) {
       auto mid = score_buf.begin() + score_buf.size() / 2;
@@ -737,7 +865,7 @@ struct Detector::Impl {
     ColorVec field_sum;
     int field_n = 0;
     const double margin = 50;
-    for (int i = 0; i < static_cast<int>(blobs.size()); ++i) {
+    for (int i = 0; i < n_strong; ++i) {  // never a weak peak
       const FrameBlob& b = blobs[i];
       if (!b.valid || b.robot >= 0) continue;
       const FieldMm p = b.at_ball;
@@ -891,7 +1019,7 @@ struct Detector::Impl {
     dropImplausibleCenters();
     classifyRobots();
     for (auto& r : robots) {
-      if (opt.robot_height_yellow != opt.robot_height_blue) refit(r);
+      if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
     }
     if (opt.tracking) {
       if (!have_frame) tracks.clear();

@@ -81,11 +81,24 @@ struct DetectorOptions {
   // The protocol has no unknown id and a wrong one is a false robot: such
   // guesses were right 7 of 14 times over the scene sweep, 3 of 6 in the
   // side view, 33 of 42 in the 1224 x 1024 presets (7 of 7 under a blue
-  // white balance, 24 of 33 in the dark and noisy frames). Reported by
+  // white balance, 24 of 33 in the dark and noisy frames), measured before
+  // weak peaks filled most such missing blobs (weak_sides). Reported by
   // default, as teams expect every robot; `run --no-guessed-ids` puts
   // precision first. Its blobs are claimed either way, so they never become
   // balls.
   bool report_guessed_ids = true;
+
+  // --- weak peaks as side blobs (weak_sides.h) ---
+  // A pattern of a center blob and at least two side blobs may take weak
+  // peaks (BlobList::weak) for its missing side blobs, each within this
+  // distance of its predicted slot, when the whole pattern then fits with a
+  // score (eq. 5.21) of at least min_weak_fit.
+  bool weak_sides = true;
+  double weak_side_tolerance = 10;  // mm
+  double min_weak_fit = 0.5;        // all five blobs within 10 mm of the fit
+  // A weak side's marker color counts only when its distance to the nearer
+  // side color is below this fraction of its distance to the other.
+  double weak_color_margin = 0.7;
 
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color

@@ -18,7 +18,12 @@ struct Blob {
 // Blobs of one frame, strongest first. Capacity is reserved once per camera.
 struct BlobList {
   double plane_height = 150;  // mm, the plane the grid lies on
-  std::vector<Blob> blobs;
+  std::vector<Blob> blobs;  // score above PipelineOptions::threshold
+  // Peaks scoring between PipelineOptions::weak_threshold and threshold,
+  // strongest first, none within a blob's distance of a stronger one. Alone
+  // they are mostly carpet texture and noise; the detector takes one only
+  // where a robot pattern of strong blobs predicts a side blob.
+  std::vector<Blob> weak;
 };
 
 }  // namespace dv

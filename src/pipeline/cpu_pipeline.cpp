@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "pipeline/bayer_full.h"
 #include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
+#include "pipeline/blob_spacing.h"
 #include "pipeline/kernels.h"
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
@@ -30,6 +32,8 @@ namespace {
 // Bands per thread for the banded pass: a thread the OS delays holds up
 // little of the frame, and the rows rectified twice stay few.
 constexpr int kBandsPerThread = 4;
+// Blobs above which the weak-peak scan is shared out to the pool.
+constexpr size_t kWeakScanOnPoolAbove = 150;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -76,6 +80,12 @@ struct CpuPipeline::Impl {
   std::vector<std::vector<PeakCandidate>> candidates;  // one per pool part
   std::vector<int> candidate_counts;
   std::vector<PeakCandidate> merged;
+  BlobSpacing spacing;
+  // Weak peaks: the blobs they are looked for around, sorted by row, and
+  // the same blobs indexed by place.
+  std::vector<GridPx> near;
+  BlobSpacing reach;
+  std::vector<std::vector<std::pair<int, int>>> spans;  // scratch of findPeaksNear, per part
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -140,12 +150,20 @@ struct CpuPipeline::Impl {
     peak_mask.assign(eroded.datastart, eroded.dataend);
 
     const int parts = pool.size();
-    // Room for weak candidates that the ratio test removes afterwards.
-    const int capacity = 4 * std::max(16, opt.max_blobs);
+    // Room for candidates that the ratio test removes afterwards.
+    const int capacity = 4 * std::max(16, opt.max_blobs + weakCapacity());
     candidates.assign(parts, std::vector<PeakCandidate>(capacity));
     candidate_counts.assign(parts, 0);
     merged.reserve(static_cast<size_t>(capacity) * parts);
+    spacing.configure(grid.width, grid.height, kMinBlobDistanceMm / grid.scale,
+                      std::max(0, opt.max_blobs) + weakCapacity());
+    reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs));
+    near.reserve(std::max(0, opt.max_blobs));
+    spans.assign(parts, {});
+    for (auto& v : spans) v.reserve(256);
   }
+
+  int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
 
   // Splits rows [0, n) into one contiguous band per pool part and tells the
   // body its part index.
@@ -322,6 +340,7 @@ struct CpuPipeline::Impl {
 
   bool process(const cv::Mat& raw, BlobList& out) {
     out.blobs.clear();
+    out.weak.clear();
     out.plane_height = opt.plane_height;
     if (!checkFrame(raw)) return false;
     const bool bayer = raw.channels() == 1;
@@ -385,59 +404,91 @@ struct CpuPipeline::Impl {
 
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
-    // Raw score > threshold * floor is necessary for ratio > threshold.
     const float threshold = static_cast<float>(opt.threshold);
     const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r))
                                                              : quadrant_r;
-    forParts(gh, [&](int p, int b, int e) {
-      auto& list = candidates[p];
-      const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin,
-                                 threshold * kEnergyFloor, list.data(), 0,
-                                 static_cast<int>(list.size()), b, e);
+    // Keeps the candidates of list[0, n) whose ratio exceeds `low` and (for
+    // weak peaks) does not exceed `high`, with the ratio as their score.
+    auto ratioTest = [&](PeakCandidate* list, int n, float low, float high) {
       int kept = 0;
       for (int i = 0; i < n; ++i) {
-        // Energy above score / threshold fails the ratio test (the floor
-        // only lowers the ratio further), so its sum may stop there.
+        // Energy above score / low fails the ratio test (the floor only
+        // lowers the ratio further), so its sum may stop there.
         const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, list[i].x,
-                                                  list[i].y, window, list[i].score / threshold);
+                                                  list[i].y, window, list[i].score / low);
         const float ratio = list[i].score / (energy + kEnergyFloor);
-        if (ratio > threshold) list[kept++] = {list[i].x, list[i].y, ratio};
+        if (ratio > low && ratio <= high) list[kept++] = {list[i].x, list[i].y, ratio};
       }
-      candidate_counts[p] = kept;
-    });
-    merged.clear();
-    for (size_t p = 0; p < candidates.size(); ++p)
-      merged.insert(merged.end(), candidates[p].begin(), candidates[p].begin() + candidate_counts[p]);
-    const size_t keep = std::min(merged.size(), static_cast<size_t>(std::max(0, opt.max_blobs)));
-    std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(),
-                      [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; });
+      return kept;
+    };
+    const auto by_score = [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; };
+    // The candidates of all parts, the `cap` strongest first.
+    auto gather = [&](size_t cap) {
+      merged.clear();
+      for (size_t p = 0; p < candidates.size(); ++p)
+        merged.insert(merged.end(), candidates[p].begin(), candidates[p].begin() + candidate_counts[p]);
+      const size_t keep = std::min(merged.size(), cap);
+      std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(), by_score);
+      return keep;
+    };
     // One blob per object: a weaker peak within kMinBlobDistanceMm of a
     // stronger one is a second maximum of the same blob. Real blobs are at
     // least ~43 mm apart (two touching balls).
-    const double min_d2 = std::pow(kMinBlobDistanceMm / grid.scale, 2);
-    for (size_t i = 0; i < keep; ++i) {
-      const auto& c = merged[i];
-      bool duplicate = false;
-      for (const auto& kept : out.blobs) {
-        const double dx = kept.grid.x - c.x, dy = kept.grid.y - c.y;
-        if (dx * dx + dy * dy < min_d2) {
-          duplicate = true;
-          break;
-        }
+    auto select = [&](size_t keep, std::vector<Blob>& list, size_t max_size) {
+      for (size_t i = 0; i < keep && list.size() < max_size; ++i) {
+        const PeakCandidate& c = merged[i];
+        if (spacing.nearKept(c.x, c.y)) continue;
+        Blob blob;
+        blob.grid = interpolatePeak(score.data(), gw, c.x, c.y);
+        blob.position = grid.toField(blob.grid);
+        blob.score = c.score;
+        meanColor(blob.grid, blob.rgb);
+        // Every blob the league uses is strongly colored; a near-neutral mean
+        // color is a white line crossing or a gray feature, whose chroma edges
+        // came from the carpet around it.
+        const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+        const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+        if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
+        list.push_back(blob);
+        spacing.keep(blob.grid.x, blob.grid.y);
       }
-      if (duplicate) continue;
-      Blob blob;
-      blob.grid = interpolatePeak(score.data(), gw, c.x, c.y);
-      blob.position = grid.toField(blob.grid);
-      blob.score = c.score;
-      meanColor(blob.grid, blob.rgb);
-      // Every blob the league uses is strongly colored; a near-neutral mean
-      // color is a white line crossing or a gray feature, whose chroma edges
-      // came from the carpet around it.
-      const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-      const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-      if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
-      out.blobs.push_back(blob);
+    };
+
+    forParts(gh, [&](int p, int b, int e) {
+      auto& list = candidates[p];
+      // Raw score > threshold * floor is necessary for ratio > threshold.
+      const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin, threshold * kEnergyFloor,
+                                 list.data(), 0, static_cast<int>(list.size()), b, e);
+      candidate_counts[p] = ratioTest(list.data(), n, threshold, std::numeric_limits<float>::infinity());
+    });
+    spacing.clear();
+    select(gather(std::max(0, opt.max_blobs)), out.blobs, std::numeric_limits<size_t>::max());
+
+    // Weak peaks only around the blobs (hysteresis): where a side blob of a
+    // robot whose center blob was found may lie.
+    if (weakCapacity() > 0 && !out.blobs.empty()) {
+      const float low = std::min(threshold, static_cast<float>(opt.weak_threshold));
+      near.clear();
+      reach.clear();
+      for (const Blob& b : out.blobs) near.push_back(b.grid), reach.keep(b.grid.x, b.grid.y);
+      std::sort(near.begin(), near.end(), [](const GridPx& a, const GridPx& b) { return a.y < b.y; });
+      // Few blobs: on this thread, as their discs are a small part of the
+      // grid (less work than waking the pool again); many (noisy carpet):
+      // band by band on the pool.
+      auto weakRows = [&](int p, int b, int e) {
+        auto& list = candidates[p];
+        const int n = findPeaksNear(score.data(), peak_mask.data(), gw, gh, margin, low * kEnergyFloor,
+                                    near.data(), static_cast<int>(near.size()), reach, spans[p], list.data(), 0,
+                                    static_cast<int>(list.size()), b, e);
+        candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
+      };
+      std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
+      if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
+      else forParts(gh, weakRows);
+      // Up to max_weak_blobs weak peaks, strongest first (second maxima of
+      // blobs do not count).
+      select(gather(std::numeric_limits<size_t>::max()), out.weak,
+             static_cast<size_t>(weakCapacity()));
     }
     times.peaks_ms = msSince(t0);
     times.total_ms = msSince(t_start);

@@ -33,6 +33,12 @@ struct PipelineOptions {
   // near-neutral blobs are dropped by color (see cpu_pipeline.cpp).
   double threshold = 0.24;
   int max_blobs = 2000;
+  // Weak peaks (BlobList::weak): scores in (weak_threshold, threshold]. Far,
+  // blurred or noisy side blobs land there, among many texture and noise
+  // peaks, so they are handed over apart and used only where the pattern
+  // vouches for them (detection/weak_sides.h). 0 turns them off.
+  double weak_threshold = 0.12;
+  int max_weak_blobs = 1000;
   int threads = 0;  // 0 = all cores
 };
 

@@ -20,6 +20,7 @@ ScoreWindows scoreWindows(double scale, BlobScoreKind kind) {
   w.margin = window + static_cast<int>(std::floor(w.gradient_scale)) + 2;
   w.energy_window = circle ? static_cast<int>(std::lround(w.circle_radius)) : w.quadrant_radius;
   w.color_radius = std::max(1.0, kColorRadiusMm / scale);
+  w.weak_reach = kWeakReachMm / scale;
   return w;
 }
 

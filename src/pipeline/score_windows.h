@@ -20,6 +20,10 @@ inline constexpr double kColorRadiusMm = 13;
 inline constexpr float kMinBlobSaturation = 0.25f;
 // Peaks closer than this belong to the same blob.
 inline constexpr double kMinBlobDistanceMm = 20;
+// Weak peaks (BlobList::weak) are looked for only this close to a blob: a
+// side blob lies 65 mm from its robot's center blob, and the detector
+// searches side blobs up to 90 mm from a center (DetectorOptions).
+inline constexpr double kWeakReachMm = 90;
 // Inner corner of each quadrant left out of the score: crossings of 10 mm
 // lines make the same checkerboard as a blob, but only near the center.
 inline constexpr double kInnerCornerMm = 10;
@@ -40,6 +44,7 @@ struct ScoreWindows {
   int margin = 1;             // cells at the edge without a full score window
   int energy_window = 2;      // half size of the gradient energy window
   double color_radius = 1;
+  double weak_reach = 1;      // kWeakReachMm in cells
 };
 ScoreWindows scoreWindows(double scale, BlobScoreKind kind);
 

@@ -104,7 +104,7 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   const auto& dev = ctx_->device();
   zero_copy_ = dev.host_unified_memory;
   fp64_ = ctx_->fp64();
-  capacity_ = std::max({1024, 4 * c.max_blobs, 16});
+  capacity_ = std::max({1024, 4 * (c.max_blobs + weakCapacity()), 16});
   const int ws = src_width_, hs = src_height_;
   // Where the brightness is measured: samples, or the 2x2 cells under full
   // samples (as fullBayerCells in pipeline/bayer_full.h).
@@ -316,8 +316,8 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argInt(b_->peaks, 2, c.grid_width);
   argInt(b_->peaks, 3, c.grid_height);
   argInt(b_->peaks, 4, c.margin);
-  argFloat(b_->peaks, 5, c.threshold * c.energy_floor);  // ratio > t needs raw > t * floor
-  argFloat(b_->peaks, 6, c.threshold);
+  argFloat(b_->peaks, 5, lowThreshold() * c.energy_floor);  // ratio > t needs raw > t * floor
+  argFloat(b_->peaks, 6, lowThreshold());
   argMem(b_->peaks, 7, b_->chroma);
   argInt(b_->peaks, 8, k);
   argFloat(b_->peaks, 9, a);
@@ -457,7 +457,12 @@ bool OclEngine::run() {
     if (a.y != b.y) return a.y < b.y;
     return a.x < b.x;
   });
-  if (static_cast<int>(peaks_.size()) > c.max_blobs) peaks_.resize(std::max(0, c.max_blobs));
+  // The max_blobs strongest above the threshold, then every weak one (the
+  // host keeps those near blobs).
+  const auto weak = std::partition_point(peaks_.begin(), peaks_.end(),
+                                         [&](const OclPeak& p) { return p.score > c.threshold; });
+  const long keep = std::min<long>(weak - peaks_.begin(), std::max(0, c.max_blobs));
+  peaks_.erase(peaks_.begin() + keep, weak);
 
   auto& t = times_;
   t.upload_ms = eventMs(ev[Buffers::kUpload], ev[Buffers::kUpload]);

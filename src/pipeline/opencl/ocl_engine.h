@@ -9,6 +9,7 @@
 // kernels read it in place (map/unmap only); on discrete GPUs it stays mapped
 // as pinned staging memory and is copied by DMA. Every buffer is created once
 // in the constructor; run() allocates nothing of its own.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -53,6 +54,10 @@ struct OclEngineConfig {
   double color_radius = 1;    // cells, disc of the mean blob color
   float threshold = 0.1f;  // on the ratio; raw scores must exceed threshold * energy_floor
   int max_blobs = 2000;
+  // Weak peaks: ratio in (weak_threshold, threshold]; they are listed after
+  // the blobs when max_weak_blobs > 0.
+  float weak_threshold = 0;
+  int max_weak_blobs = 0;
 
   // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
   bool pinned_input = true;
@@ -97,8 +102,10 @@ class OclEngine {
   // OpenCL failure; never throws.
   bool run();
 
+  // Peaks above the threshold (up to max_blobs), then all weak peaks, each
+  // part strongest first.
   const std::vector<OclPeak>& peaks() const { return peaks_; }
-  // Peaks found before truncation to max_blobs (may exceed the list).
+  // Peaks found before truncation (may exceed the list).
   int peaksFound() const { return peaks_found_; }
   const OclStageTimes& times() const { return times_; }
   const std::string& error() const { return error_; }
@@ -117,6 +124,12 @@ class OclEngine {
  private:
   struct Buffers;
   bool fail(const char* what, int status);
+  int weakCapacity() const { return cfg_.weak_threshold > 0 ? std::max(0, cfg_.max_weak_blobs) : 0; }
+  // The ratio every reported peak exceeds: the weak threshold where weak
+  // peaks are wanted.
+  float lowThreshold() const {
+    return weakCapacity() > 0 ? std::min(cfg_.threshold, cfg_.weak_threshold) : cfg_.threshold;
+  }
 
   std::shared_ptr<OclContext> ctx_;
   OclEngineConfig cfg_;

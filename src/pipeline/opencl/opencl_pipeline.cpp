@@ -50,6 +50,8 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   cfg.color_radius = w.color_radius;
   cfg.threshold = static_cast<float>(opt_.threshold);
   cfg.max_blobs = opt_.max_blobs;
+  cfg.weak_threshold = static_cast<float>(opt_.weak_threshold);
+  cfg.max_weak_blobs = opt_.max_weak_blobs;
   const ChromaTransform chroma = ChromaTransform::of(opt_.color);
   for (int i = 0; i < 3; ++i) {  // as CpuPipeline's ChromaFixed
     cfg.chroma_a[i] = static_cast<int>(std::lround(chroma.a[i] * 1024));
@@ -74,6 +76,10 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
   }
   engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
+  const auto& ec = engine_->config();
+  spacing_.configure(ec.grid_width, ec.grid_height, kMinBlobDistanceMm / grid_.scale,
+                     std::max(0, ec.max_blobs) + std::max(0, ec.max_weak_blobs));
+  reach_.configure(ec.grid_width, ec.grid_height, w.weak_reach, std::max(0, ec.max_blobs));
 }
 
 OpenClPipeline::~OpenClPipeline() = default;
@@ -87,6 +93,7 @@ std::optional<ImagePx> OpenClPipeline::gridToImage(GridPx g) const {
 
 bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   out.blobs.clear();
+  out.weak.clear();
   out.plane_height = opt_.plane_height;
   const auto& cfg = engine_->config();
   // The same checks and messages as the CPU reference.
@@ -131,18 +138,16 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   }
   // As the CPU reference: strongest first, a weaker peak within
   // kMinBlobDistanceMm of a kept blob is the same blob, near-neutral colors
-  // are line crossings or gray features.
-  const double min_d2 = std::pow(kMinBlobDistanceMm / grid_.scale, 2);
+  // are line crossings or gray features. The engine lists the peaks above
+  // the threshold first, then the weak ones, of which those within the weak
+  // reach of a blob count, up to max_weak_blobs.
+  spacing_.clear();
+  reach_.clear();
   for (const auto& p : engine_->peaks()) {
-    bool duplicate = false;
-    for (const auto& kept : out.blobs) {
-      const double dx = kept.grid.x - p.cell_x, dy = kept.grid.y - p.cell_y;
-      if (dx * dx + dy * dy < min_d2) {
-        duplicate = true;
-        break;
-      }
-    }
-    if (duplicate) continue;
+    const bool weak = !(p.score > cfg.threshold);
+    if (weak && (static_cast<int>(out.weak.size()) >= cfg.max_weak_blobs || !reach_.nearKept(p.cell_x, p.cell_y)))
+      continue;
+    if (spacing_.nearKept(p.cell_x, p.cell_y)) continue;
     Blob b;
     b.grid = {p.x, p.y};
     b.position = grid_.toField(b.grid);
@@ -151,7 +156,13 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     const float hi = std::max({b.rgb[0], b.rgb[1], b.rgb[2]});
     const float lo = std::min({b.rgb[0], b.rgb[1], b.rgb[2]});
     if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
-    out.blobs.push_back(b);
+    spacing_.keep(b.grid.x, b.grid.y);
+    if (weak) {
+      out.weak.push_back(b);
+    } else {
+      out.blobs.push_back(b);
+      reach_.keep(b.grid.x, b.grid.y);
+    }
   }
   const auto& t = engine_->times();
   times_.bayer_ms = t.bayer_ms;

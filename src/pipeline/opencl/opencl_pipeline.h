@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pipeline/backend.h"
+#include "pipeline/blob_spacing.h"
 #include "pipeline/opencl/ocl_engine.h"
 
 namespace dv {
@@ -42,6 +43,8 @@ class OpenClPipeline final : public PixelPipeline {
   PipelineOptions opt_;
   RectifiedGrid grid_;
   std::unique_ptr<OclEngine> engine_;
+  BlobSpacing spacing_;  // one blob per object
+  BlobSpacing reach_;    // where weak peaks may lie: near a blob
   StageTimes times_;
   std::string error_;
   std::string sampling_note_;
