@@ -14,6 +14,7 @@
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 
 namespace dv {
@@ -69,6 +70,15 @@ struct CpuPipeline::Impl {
   float luma_mean = 100;
   bool has_frame = false;
 
+  // Fast-ball pass (streak_score.h): coarse chroma pairs, score, best
+  // orientation, peak mask, candidates per pool part.
+  StreakWindows streak;
+  std::vector<float> streak_coarse, streak_score;
+  std::vector<uint8_t> streak_orient, streak_mask;
+  std::vector<std::vector<StreakPeak>> streak_candidates;
+  std::vector<int> streak_counts;
+  std::vector<StreakPeak> streak_merged;
+
   StageTimes times;
   std::string error;
 
@@ -120,7 +130,20 @@ struct CpuPipeline::Impl {
               {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
     peak_mask.assign(eroded.datastart, eroded.dataend);
 
+    // A streak peak counts only where its whole footprint is seen.
+    streak = streakWindows(grid.scale, grid.width, grid.height);
+    {
+      streak_mask = streakPeakMask(table.valid.data(), grid.width, grid.height, streak);
+      const size_t coarse = streak_mask.size();
+      streak_coarse.assign(2 * coarse, 0);
+      streak_score.assign(coarse, 0);
+      streak_orient.assign(coarse, 0);
+    }
+
     const int parts = pool.size();
+    streak_candidates.assign(parts, std::vector<StreakPeak>(kMaxStreakCandidates));
+    streak_counts.assign(parts, 0);
+    streak_merged.reserve(static_cast<size_t>(kMaxStreakCandidates) * parts);
     // Room for weak candidates that the ratio test removes afterwards.
     const int capacity = 4 * std::max(16, opt.max_blobs);
     candidates.assign(parts, std::vector<PeakCandidate>(capacity));
@@ -326,9 +349,47 @@ struct CpuPipeline::Impl {
       out.blobs.push_back(blob);
     }
     times.peaks_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    findStreaks(out);
+    times.streak_ms = msSince(t0);
     times.total_ms = msSince(t_start);
     has_frame = true;
     return true;
+  }
+
+  // Fast balls (streak_score.h): candidates the blob score missed, appended
+  // after the blobs, strongest first.
+  void findStreaks(BlobList& out) {
+    const int ch = streak.coarse_height;
+    pool.parallelFor(ch, [&](int b, int e) {
+      streakCoarseRows(ca.data(), cb.data(), grid.width, streak, streak_coarse.data(), b, e);
+    });
+    pool.parallelFor(ch, [&](int b, int e) {
+      streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
+    });
+    forParts(ch, [&](int p, int b, int e) {
+      streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
+                                            streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
+    });
+    streak_merged.clear();
+    for (size_t p = 0; p < streak_candidates.size(); ++p)
+      streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
+                           streak_candidates[p].begin() + streak_counts[p]);
+    std::sort(streak_merged.begin(), streak_merged.end(), [](const StreakPeak& a, const StreakPeak& b) {
+      if (a.score != b.score) return a.score > b.score;
+      return a.y != b.y ? a.y < b.y : a.x < b.x;
+    });
+    for (const StreakPeak& p : streak_merged) {
+      const int o = streak_orient[static_cast<size_t>(p.y) * streak.coarse_width + p.x];
+      Blob blob;
+      blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
+      blob.position = grid.toField(blob.grid);
+      blob.score = p.score;
+      blob.streak = true;
+      meanColor(blob.grid, blob.rgb);
+      if (acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
+    }
   }
 
   // Bilinear RGB of grid cell k from the last frame (co-sited samples).

@@ -54,6 +54,18 @@ struct OclEngineConfig {
   float threshold = 0.1f;  // on the ratio; raw scores must exceed threshold * energy_floor
   int max_blobs = 2000;
 
+  // Fast-ball pass (pipeline/streak_score.h, StreakWindows): coarse grid,
+  // per-orientation steps (along: step_x, step_y), inner half run, side and
+  // end steps, refinement window (grid cells), threshold and floor, and the
+  // coarse peak mask.
+  int streak_factor = 2, streak_coarse_width = 0, streak_coarse_height = 0, streak_margin = 7;
+  int streak_step_x[4] = {1, 1, 0, -1}, streak_step_y[4] = {0, 1, 1, 1};
+  int streak_inner[4] = {1, 1, 1, 1}, streak_side[4] = {3, 2, 3, 2}, streak_end[4] = {6, 4, 6, 4};
+  float streak_refine_along = 10, streak_refine_across = 5;
+  float streak_threshold = 0.45f, streak_floor = 0.02f;
+  std::vector<uint8_t> streak_mask;
+  int streak_capacity = 256;
+
   // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
   bool pinned_input = true;
 };
@@ -68,7 +80,7 @@ struct OclPeak {
 // the host wall time of run() (upload to peak list on the host).
 struct OclStageTimes {
   double upload_ms = 0, bayer_ms = 0, rectify_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
-         peaks_ms = 0, download_ms = 0;
+         peaks_ms = 0, streak_ms = 0, download_ms = 0;
   double device_ms = 0;  // first command's start to last command's end
   double wall_ms = 0;
 };
@@ -98,6 +110,10 @@ class OclEngine {
   bool run();
 
   const std::vector<OclPeak>& peaks() const { return peaks_; }
+  // Streak peaks of the fast-ball pass, strongest first (ties by coarse
+  // cell, row then column); x, y: the refined grid position, cell_x, cell_y:
+  // the coarse peak cell.
+  const std::vector<OclPeak>& streakPeaks() const { return streak_peaks_; }
   // Peaks found before truncation to max_blobs (may exceed the list).
   int peaksFound() const { return peaks_found_; }
   const OclStageTimes& times() const { return times_; }
@@ -109,6 +125,7 @@ class OclEngine {
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
   std::vector<float> readScore() const;
+  std::vector<float> readStreakScore() const;  // coarse grid
   float lastLumaMean() const;                 // frame brightness used by the last frame
 
   // Only the upload of one frame (for comparison with the end-to-end time).
@@ -130,6 +147,8 @@ class OclEngine {
   int capacity_ = 0;
   float luma_count_ = 1;
   std::vector<OclPeak> peaks_;
+  std::vector<OclPeak> streak_peaks_;
+  std::vector<uint32_t> streak_host_;  // the streak list read back
   int peaks_found_ = 0;
   OclStageTimes times_;
   std::string error_;
