@@ -20,15 +20,14 @@ __kernel void streak_coarse(__global const float2* chroma, int width, int factor
   // The peak stage of the last frame is done (in-order queue): clear its count.
   if (cx == 0 && cy == 0) list[0] = 0u;
   if (cx >= coarse_width || cy >= coarse_height) return;
-  const float norm = 1.0f / (float)(factor * factor);
+  // The first grid row of the box, as the CPU reference.
+  const float norm = 1.0f / (float)factor;
   float sa = 0, sb = 0;
-  for (int j = 0; j < factor; ++j) {
-    const size_t row = ((size_t)cy * factor + j) * width + (size_t)cx * factor;
-    for (int i = 0; i < factor; ++i) {
-      const float2 c = chroma[row + i];
-      sa += c.x;
-      sb += c.y;
-    }
+  const size_t row = (size_t)cy * factor * width + (size_t)cx * factor;
+  for (int i = 0; i < factor; ++i) {
+    const float2 c = chroma[row + i];
+    sa += c.x;
+    sb += c.y;
   }
   coarse[(size_t)cy * coarse_width + cx] = (float2)(sa * norm, sb * norm);
 }
@@ -53,14 +52,27 @@ inline void dv_streak_footprint(__global const float2* coarse, int cw, __constan
   sur[3] = coarse[(size_t)(y - e * uy) * cw + (x - e * ux)];
 }
 
-__kernel void streak_score(__global const float2* coarse, int cw, int ch, int margin,
-                           __constant dv_streak_shape* shape, float floor_, __global float* score,
-                           __global uchar* orientation) {
-  const int x = get_global_id(0), y = get_global_id(1);
-  if (x >= cw || y >= ch) return;
+// One work item per lattice cell (i, j) = coarse cell (2i, 2j).
+__kernel void streak_score(__global const float2* coarse, int cw, int ch, int lw, int lh, int margin,
+                           __constant dv_streak_shape* shape, float floor_, int gate_reach, float gate,
+                           __global float* score, __global uchar* orientation) {
+  const int li = get_global_id(0), lj = get_global_id(1);
+  if (li >= lw || lj >= lh) return;
+  const int x = 2 * li, y = 2 * lj;
   float best = 0;
   uchar best_o = 0;
+  bool pass = false;
   if (x >= margin && x < cw - margin && y >= margin && y < ch - margin) {
+    // The gate (gateRow): the cell against the mean of four cells along the axes.
+    const size_t i = (size_t)y * cw + x;
+    const float2 c = coarse[i], l = coarse[i - gate_reach], r = coarse[i + gate_reach];
+    const float2 u = coarse[i - (size_t)gate_reach * cw], d = coarse[i + (size_t)gate_reach * cw];
+    const float ma = 0.25f * (((l.x + r.x) + u.x) + d.x);
+    const float mb = 0.25f * (((l.y + r.y) + u.y) + d.y);
+    const float da = c.x - ma, db = c.y - mb;
+    pass = da * da + db * db > gate;
+  }
+  if (pass) {
     for (int o = 0; o < DV_STREAK_ORIENTATIONS; ++o) {
       float2 inner, s[4];
       dv_streak_footprint(coarse, cw, shape, o, x, y, &inner, s);
@@ -83,32 +95,34 @@ __kernel void streak_score(__global const float2* coarse, int cw, int ch, int ma
       }
     }
   }
-  score[(size_t)y * cw + x] = best;
-  orientation[(size_t)y * cw + x] = best_o;
+  score[(size_t)lj * lw + li] = best;
+  orientation[(size_t)lj * lw + li] = best_o;
 }
 
 __kernel void streak_peaks(__global const float* score, __global const uchar* orientation,
-                           __global const uchar* mask, int cw, int ch, int margin, float threshold,
+                           __global const uchar* mask, int cw, int lw, int lh, float threshold,
                            __constant dv_streak_shape* shape, __global const float2* coarse, int factor,
                            __global const float2* chroma, int width, int height, float refine_along,
                            float refine_across, __global const uchar* raw, int raw_stride, int bayer,
                            int4 sites, int src_width, int src_height, __global const int* remap_index,
                            __global const ushort* remap_frac, dv_real color_radius,
                            __global uint* list, int capacity) {
-  const int x = get_global_id(0), y = get_global_id(1);
-  if (x < margin || y < margin || x >= cw - margin || y >= ch - margin) return;
-  const size_t cell = (size_t)y * cw + x;
+  // Lattice cell (li, lj); its coarse cell (x, y).
+  const int li = get_global_id(0), lj = get_global_id(1);
+  if (li < 1 || lj < 1 || li >= lw - 1 || lj >= lh - 1) return;
+  const size_t cell = (size_t)lj * lw + li;
   const float c = score[cell];
   if (!(c > threshold) || !mask[cell]) return;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       if (!dx && !dy) continue;
-      const float n = score[(size_t)(y + dy) * cw + (x + dx)];
+      const float n = score[(size_t)(lj + dy) * lw + (li + dx)];
       const bool before = dy < 0 || (dy == 0 && dx < 0);
       if (before ? !(c > n) : !(c >= n)) return;
     }
   const uint slot = atomic_inc(&list[0]);
   if (slot >= (uint)capacity) return;
+  const int x = 2 * li, y = 2 * lj;
 
   // Centroid of the excess chroma (refineStreak).
   const int o = orientation[cell];
@@ -179,8 +193,8 @@ __kernel void streak_peaks(__global const float* score, __global const uchar* or
   p.x = (float)gx;
   p.y = (float)gy;
   p.score = c;
-  p.cell_x = x;
-  p.cell_y = y;
+  p.cell_x = li;
+  p.cell_y = lj;
   p.r = n ? sum_r / n : 0.0f;
   p.g = n ? sum_g / n : 0.0f;
   p.b = n ? sum_b / n : 0.0f;

@@ -414,10 +414,11 @@ TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
   std::vector<float> oa(static_cast<size_t>(w) * h), ob(oa.size());
   for (size_t i = 0; i < oa.size(); ++i) oa[i] = chroma[2 * i], ob[i] = chroma[2 * i + 1];
   const size_t coarse = static_cast<size_t>(sw.coarse_width) * sw.coarse_height;
-  std::vector<float> pairs(2 * coarse), score(coarse);
-  std::vector<uint8_t> orientation(coarse);
+  const size_t lattice = static_cast<size_t>(sw.lattice_width) * sw.lattice_height;
+  std::vector<float> pairs(2 * coarse), score(lattice);
+  std::vector<uint8_t> orientation(lattice);
   streakCoarseRows(oa.data(), ob.data(), w, sw, pairs.data(), 0, sw.coarse_height);
-  streakScoreRows(pairs.data(), sw, score.data(), orientation.data(), 0, sw.coarse_height);
+  streakScoreRows(pairs.data(), sw, score.data(), orientation.data(), 0, sw.lattice_height);
   EXPECT_TRUE(e.readStreakScore() == score) << "streak score differs";
 
   int streaks = 0;

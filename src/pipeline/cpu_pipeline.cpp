@@ -134,10 +134,11 @@ struct CpuPipeline::Impl {
     streak = streakWindows(grid.scale, grid.width, grid.height);
     {
       streak_mask = streakPeakMask(table.valid.data(), grid.width, grid.height, streak);
-      const size_t coarse = streak_mask.size();
+      const size_t coarse = static_cast<size_t>(streak.coarse_width) * streak.coarse_height;
+      const size_t lattice = streak_mask.size();
       streak_coarse.assign(2 * coarse, 0);
-      streak_score.assign(coarse, 0);
-      streak_orient.assign(coarse, 0);
+      streak_score.assign(lattice, 0);
+      streak_orient.assign(lattice, 0);
     }
 
     const int parts = pool.size();
@@ -256,9 +257,18 @@ struct CpuPipeline::Impl {
 
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
+    // The fast-ball pass's coarse rows are made from grid rows just
+    // rectified, while they are in cache (streak_score.h).
+    const int f = streak.factor, ch = streak.coarse_height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(readTable(), packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
-                        cb.data(), b, e);
+      constexpr int kRows = 16;
+      for (int y = b; y < e; y += kRows) {
+        const int ye = std::min(e, y + kRows);
+        rectifyChromaRows(readTable(), packed.data(), 1.0f / (luma_mean * kPackedChromaScale), ca.data(),
+                          cb.data(), y, ye);
+        streakCoarseRows(ca.data(), cb.data(), gw, streak, streak_coarse.data(), std::min(ch, (y + f - 1) / f),
+                         std::min(ch, (ye + f - 1) / f));
+      }
     });
     times.rectify_ms = msSince(t0);
 
@@ -359,16 +369,14 @@ struct CpuPipeline::Impl {
   }
 
   // Fast balls (streak_score.h): candidates the blob score missed, appended
-  // after the blobs, strongest first.
+  // after the blobs, strongest first. The coarse rows were made with the
+  // rectification.
   void findStreaks(BlobList& out) {
-    const int ch = streak.coarse_height;
-    pool.parallelFor(ch, [&](int b, int e) {
-      streakCoarseRows(ca.data(), cb.data(), grid.width, streak, streak_coarse.data(), b, e);
-    });
-    pool.parallelFor(ch, [&](int b, int e) {
+    const int lh = streak.lattice_height;
+    pool.parallelFor(lh, [&](int b, int e) {
       streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
     });
-    forParts(ch, [&](int p, int b, int e) {
+    forParts(lh, [&](int p, int b, int e) {
       streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
                                             streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
     });
@@ -381,7 +389,8 @@ struct CpuPipeline::Impl {
       return a.y != b.y ? a.y < b.y : a.x < b.x;
     });
     for (const StreakPeak& p : streak_merged) {
-      const int o = streak_orient[static_cast<size_t>(p.y) * streak.coarse_width + p.x];
+      if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
+      const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
       Blob blob;
       blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
       blob.position = grid.toField(blob.grid);

@@ -41,7 +41,8 @@ struct PipelineOptions {
 // color_ms is only the frame brightness statistic; gradient_ms and sat_ms
 // (row prefix) are whole-plane passes of the circle score only (the quadrant
 // score makes its own G and table rows band by band, in score_ms); peaks_ms includes the ratio test, interpolation and blob colors;
-// streak_ms is the fast-ball pass (streak_score.h), candidates included.
+// streak_ms is the fast-ball pass (streak_score.h) from its coarse chroma,
+// which the CPU makes inside the rectification (rectify_ms).
 struct StageTimes {
   double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
          peaks_ms = 0, streak_ms = 0, total_ms = 0;

@@ -31,8 +31,7 @@ namespace dv {
 inline constexpr double kStreakInnerMm = 16;
 inline constexpr double kStreakSideMm = 34;
 inline constexpr double kStreakEndMm = 64;
-// Coarse cell side (mm): box means of the grid cells, about a quarter of the
-// ball's diameter.
+// Coarse cell side (mm), about a quarter of the ball's diameter.
 inline constexpr double kStreakCellMm = 11;
 // Threshold on the streak score (see streakScoreRows). A clean streak of
 // contrast |D| scores |D|^2 / (|D|^2 + kStreakFloor): on the motion preset
@@ -46,19 +45,31 @@ inline constexpr float kStreakThreshold = 0.45f;
 // reach high scores (at 0.02, 8700 carpet cells of one frame scored above
 // the threshold and crowded the ball out of the candidate lists).
 inline constexpr float kStreakFloor = 1.0f;
+// Cells are scored only where the cell's chroma differs from the mean of
+// four cells around it (the axis-aligned end samples) by more than this
+// (squared, brightness-normalised chroma): a score above kStreakThreshold
+// needs a contrast of about kStreakThreshold * kStreakFloor, and most of
+// the field is plain carpet far below.
+inline constexpr float kStreakGate = 0.2f;
 // A streak candidate within this distance of a blob is that blob.
 inline constexpr double kStreakBlobDistanceMm = 30;
 
-inline constexpr int kStreakOrientations = 4;
+inline constexpr int kStreakOrientations = 4;  // 0, 45, 90, 135 degrees
+// The score is evaluated at every other coarse cell in x and y (22 mm
+// apart): a streak's score plateau is wider than that, and its position
+// comes from the centroid, not from the peak cell. A quarter of the work.
+inline constexpr int kStreakLatticeStep = 2;
 // Candidates per band of rows, and streak blobs per frame (a field holds
 // one ball; the rest are for the ball policy to reject).
 inline constexpr int kMaxStreakCandidates = 256;
-inline constexpr int kMaxStreakBlobs = 32;  // 0, 45, 90, 135 degrees
+inline constexpr int kMaxStreakBlobs = 32;
 
 // The footprint on a grid of `scale` mm per cell, in coarse cells.
 struct StreakWindows {
   int factor = 2;  // grid cells per coarse cell side
   int coarse_width = 0, coarse_height = 0;
+  // Score lattice: lattice cell (i, j) is coarse cell (2i, 2j).
+  int lattice_width = 0, lattice_height = 0;
   // Per orientation: unit step (dx, dy) along the streak; the step across is
   // (-dy, dx). Inner run -inner..inner steps, sides at +-side, ends at +-end.
   int step_x[kStreakOrientations] = {1, 1, 0, -1};
@@ -67,45 +78,55 @@ struct StreakWindows {
   int side[kStreakOrientations] = {3, 2, 3, 2};
   int end[kStreakOrientations] = {6, 4, 6, 4};
   int margin = 7;  // coarse cells at the edge without a full footprint
+  int gate_reach = 6;  // coarse cells to the gate's samples (along the axes)
   // Refinement window on the grid: half extents along and across (cells).
   float refine_along = 10, refine_across = 5;
 };
 StreakWindows streakWindows(double grid_scale, int grid_width, int grid_height);
 
-// Coarse cells whose footprint lies within the camera's view: `valid` (grid
-// sized, 1 = seen) eroded by the footprint's reach, read at coarse centers.
+// Lattice cells whose footprint lies within the camera's view: `valid` (grid
+// sized, 1 = seen) eroded by the footprint's reach, read at their centers.
 std::vector<uint8_t> streakPeakMask(const uint8_t* valid, int grid_width, int grid_height, const StreakWindows& w);
 
-// Box means of factor x factor grid cells into coarse rows [cy_begin, cy_end)
-// of `coarse` (interleaved a, b pairs, coarse_width per row). Grid cells
-// beyond the last full box are left out.
+// Means of the first grid row of each factor x factor box (factor cells)
+// into coarse rows [cy_begin, cy_end) of `coarse` (interleaved a, b pairs,
+// coarse_width per row). Grid cells beyond the last full box are left out.
 void streakCoarseRows(const float* ca, const float* cb, int width, const StreakWindows& w, float* coarse,
                       int cy_begin, int cy_end);
 
-// Streak score of coarse rows [cy_begin, cy_end): for each orientation, with
+// Streak score of lattice rows [j_begin, j_end) into lattice-sized planes:
+// where the gate passes
+// (kStreakGate), for each orientation, with
 // I the inner mean, S_k the four surround samples, D_k = I - S_k and D their
 // mean, min_k (D_k . D) / (mean_k |D_k|^2 + kStreakFloor); the best
 // orientation's score and index. Cells within the margin are 0.
 void streakScoreRows(const float* coarse, const StreakWindows& w, float* score, uint8_t* orientation,
-                     int cy_begin, int cy_end);
+                     int j_begin, int j_end);
 
-// A local maximum of the coarse score (3x3, strict toward the top-left as
-// findPeakRows) above kStreakThreshold where mask (coarse sized) allows;
-// appends (x, y, score) to out[count..capacity) and returns the new count.
+// A local maximum of the lattice score (3x3, strict toward the top-left as
+// findPeakRows) above kStreakThreshold where mask (lattice sized) allows,
+// in lattice rows [j_begin, j_end); appends (x, y: lattice cell, score) to
+// out[count..capacity) and returns the new count.
 struct StreakPeak {
   int x = 0, y = 0;
   float score = 0;
 };
 int findStreakPeakRows(const float* score, const uint8_t* mask, const StreakWindows& w, StreakPeak* out,
-                       int count, int capacity, int cy_begin, int cy_end);
+                       int count, int capacity, int j_begin, int j_end);
 
 // Centroid (grid cells) of the chroma excess over the surround of the
-// streak at coarse peak p: weight max(0, (c - B) . (I - B) / |I - B|^2 -
+// streak at lattice peak p: weight max(0, (c - B) . (I - B) / |I - B|^2 -
 // 0.25) over the cells of the footprint rectangle, with I and B the inner
-// and surround means of the peak's orientation. The coarse peak's center
+// and surround means of the peak's orientation. The peak's center
 // where no cell has weight.
 GridPx refineStreak(const float* ca, const float* cb, int width, int height, const float* coarse,
                     const StreakWindows& w, const StreakPeak& p, int orientation);
+
+// Grid position of a lattice peak's cell center.
+GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p);
+// Whether a blob of `blobs` lies within kStreakBlobDistanceMm of g: a peak
+// there is that blob (checked before the refinement, to spare it, and after).
+bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale);
 
 // Whether a streak blob (position and color set) joins `blobs`: not within
 // kStreakBlobDistanceMm of any blob there (an object the blob score found,

@@ -101,14 +101,19 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
                                     : c.quadrant_radius;
   const int reach = static_cast<int>(std::floor(c.gradient_scale)) + 1;
   const size_t coarse_cells = static_cast<size_t>(c.streak_coarse_width) * c.streak_coarse_height;
+  const size_t lattice_cells = static_cast<size_t>(c.streak_lattice_width) * c.streak_lattice_height;
   if (c.streak_factor < 1 || c.streak_coarse_width * c.streak_factor > c.grid_width ||
-      c.streak_coarse_height * c.streak_factor > c.grid_height || c.streak_mask.size() != coarse_cells ||
+      c.streak_coarse_height * c.streak_factor > c.grid_height || c.streak_mask.size() != lattice_cells ||
+      c.streak_lattice_width != (c.streak_coarse_width + 1) / 2 ||
+      c.streak_lattice_height != (c.streak_coarse_height + 1) / 2 ||
       c.streak_capacity < 1)
     throw std::invalid_argument("OpenCL pipeline: streak tables do not match the grid");
   for (int o = 0; o < 4; ++o)
     if (std::max(c.streak_side[o], c.streak_end[o]) * std::max(std::abs(c.streak_step_x[o]),
                                                                std::abs(c.streak_step_y[o])) >= c.streak_margin)
       throw std::invalid_argument("OpenCL pipeline: streak margin smaller than its footprint");
+  if (c.streak_gate_reach < 1 || c.streak_gate_reach >= c.streak_margin)
+    throw std::invalid_argument("OpenCL pipeline: streak margin smaller than its gate");
   if (c.quadrant_radius < 1 || c.inner_corner < 0 || c.inner_corner >= c.quadrant_radius ||
       c.margin < std::max(window, c.energy_window) + reach)
     throw std::invalid_argument("OpenCL pipeline: margin smaller than the score window");
@@ -186,9 +191,9 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   }
   b_->half = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof half, half, "circle");
   b_->streak_coarse = make(CL_MEM_READ_WRITE, coarse_cells * 8, nullptr, "streak chroma");
-  b_->streak_score = make(CL_MEM_READ_WRITE, coarse_cells * 4, nullptr, "streak score");
-  b_->streak_orient = make(CL_MEM_READ_WRITE, coarse_cells, nullptr, "streak orientation");
-  b_->streak_mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, coarse_cells, c.streak_mask.data(),
+  b_->streak_score = make(CL_MEM_READ_WRITE, lattice_cells * 4, nullptr, "streak score");
+  b_->streak_orient = make(CL_MEM_READ_WRITE, lattice_cells, nullptr, "streak orientation");
+  b_->streak_mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lattice_cells, c.streak_mask.data(),
                          "streak mask");
   {
     // dv_streak_shape in streak.cl: five arrays of four ints.
@@ -389,11 +394,15 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argMem(b_->streak_score_k, 0, b_->streak_coarse);
   argInt(b_->streak_score_k, 1, c.streak_coarse_width);
   argInt(b_->streak_score_k, 2, c.streak_coarse_height);
-  argInt(b_->streak_score_k, 3, c.streak_margin);
-  argMem(b_->streak_score_k, 4, b_->streak_shape);
-  argFloat(b_->streak_score_k, 5, c.streak_floor);
-  argMem(b_->streak_score_k, 6, b_->streak_score);
-  argMem(b_->streak_score_k, 7, b_->streak_orient);
+  argInt(b_->streak_score_k, 3, c.streak_lattice_width);
+  argInt(b_->streak_score_k, 4, c.streak_lattice_height);
+  argInt(b_->streak_score_k, 5, c.streak_margin);
+  argMem(b_->streak_score_k, 6, b_->streak_shape);
+  argFloat(b_->streak_score_k, 7, c.streak_floor);
+  argInt(b_->streak_score_k, 8, c.streak_gate_reach);
+  argFloat(b_->streak_score_k, 9, c.streak_gate);
+  argMem(b_->streak_score_k, 10, b_->streak_score);
+  argMem(b_->streak_score_k, 11, b_->streak_orient);
 
   b_->streak_peaks_k = ctx_->createKernel("streak_peaks");
   {
@@ -402,8 +411,8 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     argMem(sk, 1, b_->streak_orient);
     argMem(sk, 2, b_->streak_mask);
     argInt(sk, 3, c.streak_coarse_width);
-    argInt(sk, 4, c.streak_coarse_height);
-    argInt(sk, 5, c.streak_margin);
+    argInt(sk, 4, c.streak_lattice_width);
+    argInt(sk, 5, c.streak_lattice_height);
     argFloat(sk, 6, c.streak_threshold);
     argMem(sk, 7, b_->streak_shape);
     argMem(sk, 8, b_->streak_coarse);
@@ -527,10 +536,12 @@ bool OclEngine::run() {
   if ((st = clEnqueueNDRangeKernel(q, b_->streak_coarse_k, 2, nullptr, coarse_global, pl, 0, nullptr,
                                    &ev[Buffers::kStreakCoarse])) != CL_SUCCESS)
     return fail("streak chroma", st);
-  if ((st = clEnqueueNDRangeKernel(q, b_->streak_score_k, 2, nullptr, coarse_global, pl, 0, nullptr,
+  const size_t lattice_global[2] = {roundUp(c.streak_lattice_width, pl[0]),
+                                    roundUp(c.streak_lattice_height, pl[1])};
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_score_k, 2, nullptr, lattice_global, pl, 0, nullptr,
                                    &ev[Buffers::kStreakScore])) != CL_SUCCESS)
     return fail("streak score", st);
-  if ((st = clEnqueueNDRangeKernel(q, b_->streak_peaks_k, 2, nullptr, coarse_global, pl, 0, nullptr,
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_peaks_k, 2, nullptr, lattice_global, pl, 0, nullptr,
                                    &ev[Buffers::kStreakPeaks])) != CL_SUCCESS)
     return fail("streak peaks", st);
 
@@ -640,7 +651,7 @@ std::vector<float> OclEngine::readScore() const {
 }
 std::vector<float> OclEngine::readStreakScore() const {
   return readAll<float>(ctx_->queue(), b_->streak_score,
-                        1ull * cfg_.streak_coarse_width * cfg_.streak_coarse_height);
+                        1ull * cfg_.streak_lattice_width * cfg_.streak_lattice_height);
 }
 float OclEngine::lastLumaMean() const { return last_luma_mean_; }
 

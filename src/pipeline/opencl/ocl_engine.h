@@ -56,13 +56,16 @@ struct OclEngineConfig {
 
   // Fast-ball pass (pipeline/streak_score.h, StreakWindows): coarse grid,
   // per-orientation steps (along: step_x, step_y), inner half run, side and
-  // end steps, refinement window (grid cells), threshold and floor, and the
-  // coarse peak mask.
+  // end steps, refinement window (grid cells), threshold, floor and gate,
+  // and the coarse peak mask.
   int streak_factor = 2, streak_coarse_width = 0, streak_coarse_height = 0, streak_margin = 7;
+  int streak_lattice_width = 0, streak_lattice_height = 0;  // every other coarse cell
   int streak_step_x[4] = {1, 1, 0, -1}, streak_step_y[4] = {0, 1, 1, 1};
   int streak_inner[4] = {1, 1, 1, 1}, streak_side[4] = {3, 2, 3, 2}, streak_end[4] = {6, 4, 6, 4};
   float streak_refine_along = 10, streak_refine_across = 5;
-  float streak_threshold = 0.45f, streak_floor = 0.02f;
+  float streak_threshold = 0.45f, streak_floor = 1.0f;
+  int streak_gate_reach = 6;  // coarse cells to the gate's samples
+  float streak_gate = 0.2f;
   std::vector<uint8_t> streak_mask;
   int streak_capacity = 256;
 
@@ -110,9 +113,9 @@ class OclEngine {
   bool run();
 
   const std::vector<OclPeak>& peaks() const { return peaks_; }
-  // Streak peaks of the fast-ball pass, strongest first (ties by coarse
+  // Streak peaks of the fast-ball pass, strongest first (ties by lattice
   // cell, row then column); x, y: the refined grid position, cell_x, cell_y:
-  // the coarse peak cell.
+  // the lattice peak cell.
   const std::vector<OclPeak>& streakPeaks() const { return streak_peaks_; }
   // Peaks found before truncation to max_blobs (may exceed the list).
   int peaksFound() const { return peaks_found_; }
@@ -125,7 +128,7 @@ class OclEngine {
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
   std::vector<float> readScore() const;
-  std::vector<float> readStreakScore() const;  // coarse grid
+  std::vector<float> readStreakScore() const;  // score lattice
   float lastLumaMean() const;                 // frame brightness used by the last frame
 
   // Only the upload of one frame (for comparison with the end-to-end time).

@@ -73,11 +73,14 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
               cv::getStructuringElement(cv::MORPH_RECT, {2 * cfg.margin + 1, 2 * cfg.margin + 1}), {-1, -1}, 1,
               cv::BORDER_CONSTANT, 0);
     cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
-    const StreakWindows sw = streakWindows(grid_.scale, grid_.width, grid_.height);
+    streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
+    const StreakWindows& sw = streak_;
     cfg.streak_mask = streakPeakMask(table.valid.data(), grid_.width, grid_.height, sw);
     cfg.streak_factor = sw.factor;
     cfg.streak_coarse_width = sw.coarse_width;
     cfg.streak_coarse_height = sw.coarse_height;
+    cfg.streak_lattice_width = sw.lattice_width;
+    cfg.streak_lattice_height = sw.lattice_height;
     cfg.streak_margin = sw.margin;
     for (int o = 0; o < kStreakOrientations; ++o) {
       cfg.streak_step_x[o] = sw.step_x[o];
@@ -90,6 +93,8 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     cfg.streak_refine_across = static_cast<float>(sw.refine_across);
     cfg.streak_threshold = kStreakThreshold;
     cfg.streak_floor = kStreakFloor;
+    cfg.streak_gate_reach = sw.gate_reach;
+    cfg.streak_gate = kStreakGate;
     cfg.streak_capacity = kMaxStreakCandidates;
   }
   engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
@@ -174,6 +179,8 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   }
   // Fast-ball streaks, as the CPU reference (streak_score.h).
   for (const auto& p : engine_->streakPeaks()) {
+    const StreakPeak cell{static_cast<int>(p.cell_x), static_cast<int>(p.cell_y), p.score};
+    if (nearBlob(out.blobs, streakPeakCenter(streak_, cell), grid_.scale)) continue;
     Blob b;
     b.grid = {p.x, p.y};
     b.position = grid_.toField(b.grid);

@@ -10,6 +10,7 @@
 
 #include "pipeline/backend.h"
 #include "pipeline/opencl/ocl_engine.h"
+#include "pipeline/streak_score.h"
 
 namespace dv {
 
@@ -41,6 +42,7 @@ class OpenClPipeline final : public PixelPipeline {
   CameraModel camera_;
   PipelineOptions opt_;
   RectifiedGrid grid_;
+  StreakWindows streak_;  // the fast-ball pass's footprint on this grid
   std::unique_ptr<OclEngine> engine_;
   StageTimes times_;
   std::string error_;
