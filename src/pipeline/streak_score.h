@@ -35,10 +35,11 @@ inline constexpr double kStreakEndMm = 64;
 inline constexpr double kStreakCellMm = 11;
 // Threshold on the streak score (see streakScoreRows). A clean streak of
 // contrast |D| scores |D|^2 / (|D|^2 + kStreakFloor): on the motion preset
-// (60 frames) 6.5 m/s balls score 0.79..0.9 (|D|^2 about 4), so 0.45 still
-// takes a ball at half that contrast (a shadow); the peaks that are not
-// balls and not at a blob (goal corners) scored 0.46..0.49, 0.3 per frame,
-// and were left to the ball policy. Carpet texture scores below 0.1.
+// (60 frames) the 34 balls found as streaks scored 0.70..0.88 (|D|^2 about
+// 4), so 0.45 still takes a ball at half that contrast (a shadow); the 8
+// streak blobs that were not balls (goal corners) scored 0.45..0.49 and
+// were left to the ball policy, which took none. Carpet texture scores
+// below 0.1.
 inline constexpr float kStreakThreshold = 0.45f;
 // Added to the mean squared contrast before the ratio (brightness-normalised
 // chroma units): texture whose contrast is small against the ball's cannot
