@@ -249,6 +249,29 @@ TEST(DetectionBalls, StreaksAreBallsOnlyOnTheOrangeMixingLine) {
   }
 }
 
+// A streak that continues no ball track is not reported beside a round
+// ball: in a frame that has a ball, an orange-ish region elsewhere is more
+// likely a colored part of the scene than a second ball.
+TEST(DetectionBalls, StreakBesideARoundBallNeedsATrack) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 41);
+  for (auto r : s.randomRobots(3, 3, kX0, 1500, kY0, kY1)) s.addRobot(r);
+  s.addBall({2500, 600});
+  s.addBlob({3500, -1500, 21.5}, ColorRef{200, 118, 28}, 0.8f);
+  s.list.blobs.back().streak = true;
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  ASSERT_EQ(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 2500, 5);
+  // Alone, the same streak is the ball.
+  s.list.blobs.erase(s.list.blobs.end() - 2);
+  det.reset();
+  det.process(s.list, 0, out);
+  ASSERT_EQ(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 3500, 5);
+}
+
 TEST(DetectionAssignment, EmptyAndDegenerateInputDoNotCrash) {
   const CameraModel cam(test::topDownCamera());
   Detector det(cam, FieldModel::divisionB(), DetectorOptions{});

@@ -840,6 +840,16 @@ struct Detector::Impl {
       if (!dup && kept < opt.max_balls) ball_cands[kept++] = ball_cands[i];
     }
     ball_cands.resize(kept);
+    // A streak is trusted where it continues a ball track (on its course or
+    // kicked from a robot) or where nothing else in the frame is a ball: a
+    // colored region that stands out is weaker evidence than a round blob.
+    bool round_ball = false;
+    for (const auto& c : ball_cands) round_ball |= !blobs[c.blob].streak;
+    if (round_ball) {
+      ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
+                                      [&](const BallCandidate& c) { return blobs[c.blob].streak && c.track < 0; }),
+                       ball_cands.end());
+    }
 
     // Learn orange from a convincing ball, the field from the clutter.
     const float fp = static_cast<float>(opt.retention_force);

@@ -23,7 +23,8 @@
 //     anywhere within max_ball_speed reach). Streak blobs (a ball too fast
 //     for the round blob score, pipeline/streak_score.h) are only ever ball
 //     candidates, their color compared with each class mixed with the field
-//     color (the carpet the ball crossed during the exposure).
+//     color (the carpet the ball crossed during the exposure); beside a
+//     round ball, a streak must continue a ball track.
 #include <array>
 #include <memory>
 #include <vector>
