@@ -208,6 +208,70 @@ TEST(DetectionBalls, RealBallRanksFirstAmongOrangeishBlobs) {
     EXPECT_LT(out.balls[i].confidence, out.balls[0].confidence);
 }
 
+// Streak blobs (the pixel stage's fast-ball pass) carry the ball's color
+// mixed with the carpet's. They are judged on the mixing lines from the
+// field color: orange mixed with carpet is a ball, pink mixed with carpet is
+// not, a streak inside a robot is not, and a streak never stands in for a
+// robot's blob.
+TEST(DetectionBalls, StreaksAreBallsOnlyOnTheOrangeMixingLine) {
+  const CameraModel cam(test::topDownCamera());
+  auto mix = [](ColorRef a, ColorRef b, float wa) {
+    return ColorRef{wa * a.r + (1 - wa) * b.r, wa * a.g + (1 - wa) * b.g, wa * a.b + (1 - wa) * b.b};
+  };
+  auto addStreak = [](SceneBuilder& s, const FieldPoint& p, ColorRef c) {
+    s.addBlob(p, c, 0.8f);
+    s.list.blobs.back().streak = true;
+  };
+  for (const auto& look : {test::lookNormal(), test::lookBlueWhiteBalance(), test::lookDark()}) {
+    SceneBuilder s(cam, 31, look);
+    for (auto r : s.randomRobots(3, 3, kX0, 1500, kY0, kY1)) s.addRobot(r);
+    // A robot whose center blob is missing, with a yellow streak where the
+    // center would be: the streak must not complete the robot.
+    TrueRobot hidden{Team::Yellow, 9, {3400, -1800}, 0.3};
+    hidden.present[0] = false;
+    s.addRobot(hidden);
+    addStreak(s, {3400, -1800, 140}, SceneBuilder::kYellow);
+    // Pink mixed with the carpet, apart from everything.
+    addStreak(s, {3000, 1800, 21.5}, mix(SceneBuilder::kPink, SceneBuilder::kCarpet, 0.7f));
+    // An orange-ish streak inside a robot's top.
+    const TrueRobot& r0 = s.robots[0];
+    addStreak(s, {r0.position.x + 30, r0.position.y, 21.5}, mix(SceneBuilder::kOrange, SceneBuilder::kCarpet, 0.7f));
+    // The fast ball: 60 % orange, 40 % carpet.
+    addStreak(s, {2500, 600, 21.5}, mix(SceneBuilder::kOrange, SceneBuilder::kCarpet, 0.6f));
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out);
+    ASSERT_EQ(out.balls.size(), 1u);
+    EXPECT_NEAR(out.balls[0].position.x, 2500, 5);
+    EXPECT_NEAR(out.balls[0].position.y, 600, 5);
+    EXPECT_EQ(out.robots.size(), 6u);
+    for (const auto& r : out.robots) EXPECT_GT(std::hypot(r.position.x - 3400, r.position.y + 1800), 200);
+  }
+}
+
+// A streak that continues no ball track is not reported beside a round
+// ball: in a frame that has a ball, an orange-ish region elsewhere is more
+// likely a colored part of the scene than a second ball.
+TEST(DetectionBalls, StreakBesideARoundBallNeedsATrack) {
+  const CameraModel cam(test::topDownCamera());
+  SceneBuilder s(cam, 41);
+  for (auto r : s.randomRobots(3, 3, kX0, 1500, kY0, kY1)) s.addRobot(r);
+  s.addBall({2500, 600});
+  s.addBlob({3500, -1500, 21.5}, ColorRef{200, 118, 28}, 0.8f);
+  s.list.blobs.back().streak = true;
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  det.process(s.list, 0, out);
+  ASSERT_EQ(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 2500, 5);
+  // Alone, the same streak is the ball.
+  s.list.blobs.erase(s.list.blobs.end() - 2);
+  det.reset();
+  det.process(s.list, 0, out);
+  ASSERT_EQ(out.balls.size(), 1u);
+  EXPECT_NEAR(out.balls[0].position.x, 3500, 5);
+}
+
 TEST(DetectionAssignment, EmptyAndDegenerateInputDoNotCrash) {
   const CameraModel cam(test::topDownCamera());
   Detector det(cam, FieldModel::divisionB(), DetectorOptions{});

@@ -133,10 +133,11 @@ INSTANTIATE_TEST_SUITE_P(Presets, HarshScenesHalfResolution,
 // 60 fps, 100 Hz flicker, 8 ms motion blur, robots at up to 3 m/s turning
 // at up to 4 rad/s, tracked. The preset's ball is kicked at 6.1-6.5 m/s and
 // bounces off the walls; over the exposure it is a streak of up to 52 mm
-// whose blob score falls with speed (alone in the frame: 0.75 at rest, 0.58
-// at 3 m/s, 0.42 at 4 m/s, 0.25 at 5 m/s, no peak at 6.5 m/s; the threshold
-// is 0.24), so above about 5.5 m/s the pixel stage hands the detector no
-// ball at all. Tracking is held to every ball whose blob reached it.
+// whose round blob score falls with speed (alone in the frame: 0.75 at rest,
+// 0.58 at 3 m/s, 0.42 at 4 m/s, 0.25 at 5 m/s, no peak at 6.5 m/s; the
+// threshold is 0.24). The fast-ball pass (pipeline/streak_score.h) finds
+// it as a streak at its mid-exposure position: ball recall 0.43 -> 1.00 over
+// the 60 frames of DV_SCENE_FULL=1, precision 1.00, median error 2.1 mm.
 // The bars for tracked motion that both motion tests hold.
 void expectTrackedRobotBars(const SceneScore& s) {
   EXPECT_GE(s.recall(), 0.98);
@@ -152,7 +153,8 @@ TEST(DetectionScene, MotionWithFlickerAndBlurTracked) {
   score(spec, fullRun() ? spec.frames : 8, false, s);
   std::printf("%s\n", s.summary("motion_60fps_flicker").c_str());
   expectTrackedRobotBars(s);
-  EXPECT_GE(s.detectableBallRecall(), 0.98);
+  EXPECT_GE(s.ballRecall(), 0.98);
+  EXPECT_LE(SceneScore::median(s.ball_err), 5.0);
 }
 
 // The same motion at 1224 x 1024 with the ball kicked at up to 4 m/s, where

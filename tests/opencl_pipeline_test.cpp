@@ -22,7 +22,9 @@
 #include "pipeline/opencl/opencl_pipeline.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/thread_pool.h"
+#include "pipeline/streak_score.h"
 #include "pipeline_test_scene.h"
+#include "streak_test_scene.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
@@ -95,6 +97,7 @@ int expectCounterparts(const std::vector<Blob>& from, const std::vector<Blob>& t
     }
     EXPECT_LE(best_d, 0.05) << what << ": blob at " << b.grid.x << "," << b.grid.y;
     EXPECT_LE(std::abs(best->score - b.score), 1e-3 * std::abs(best->score)) << what;
+    EXPECT_EQ(best->streak, b.streak) << what;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(best->rgb[c], b.rgb[c], 0.5) << what;
   }
   return compared;
@@ -426,6 +429,58 @@ TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
     EXPECT_NEAR(ra.balls[i].position.y, rb.balls[i].position.y, 0.5);
   }
   EXPECT_FALSE(ra.robots.empty());
+}
+
+// A ball at 6.5 m/s, a streak the round score misses: the fast-ball pass
+// on both backends. Its coarse plane and score from the OpenCL chroma
+// exactly as the CPU functions compute them, the same streak blob (refined
+// position, color), and the same ball from the detector.
+TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
+  DV_REQUIRE_OPENCL();
+  const SceneSpec spec = test::streakScene(6500, 0.5);
+  Renderer renderer(spec);
+  const RenderedFrame frame = renderer.render(test::kStreakFrame, 0);
+  const CameraModel cam(spec.cameras[0].calib);
+  PipelineOptions opt;
+  CpuPipeline cpu(cam, spec.field, opt);
+  OpenClPipeline ocl(cam, spec.field, opt, *testDevice());
+  BlobList a, b;
+  ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
+  ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
+
+  const auto& e = ocl.engine();
+  const int w = e.config().grid_width, h = e.config().grid_height;
+  const StreakWindows sw = streakWindows(cpu.grid().scale, w, h);
+  EXPECT_EQ(e.config().streak_coarse_width, sw.coarse_width);
+  EXPECT_EQ(e.config().streak_margin, sw.margin);
+  const auto chroma = e.readChroma();
+  std::vector<float> oa(static_cast<size_t>(w) * h), ob(oa.size());
+  for (size_t i = 0; i < oa.size(); ++i) oa[i] = chroma[2 * i], ob[i] = chroma[2 * i + 1];
+  const size_t coarse = static_cast<size_t>(sw.coarse_width) * sw.coarse_height;
+  const size_t lattice = static_cast<size_t>(sw.lattice_width) * sw.lattice_height;
+  std::vector<float> pairs(2 * coarse), score(lattice);
+  std::vector<uint8_t> orientation(lattice);
+  streakCoarseRows(oa.data(), ob.data(), w, sw, pairs.data(), 0, sw.coarse_height);
+  streakScoreRows(pairs.data(), sw, score.data(), orientation.data(), 0, sw.lattice_height);
+  EXPECT_TRUE(e.readStreakScore() == score) << "streak score differs";
+
+  int streaks = 0;
+  for (const auto& blob : a.blobs) streaks += blob.streak;
+  EXPECT_EQ(streaks, 1);
+  expectSameBlobs(a, b, "fast ball");
+
+  DetectorOptions dopt;
+  dopt.tracking = false;
+  Detector da(cam, spec.field, dopt), db(cam, spec.field, dopt);
+  Detections ra, rb;
+  da.process(a, 0, ra);
+  db.process(b, 0, rb);
+  ASSERT_EQ(ra.balls.size(), 1u);
+  ASSERT_EQ(rb.balls.size(), 1u);
+  EXPECT_NEAR(ra.balls[0].position.x, rb.balls[0].position.x, 0.5);
+  EXPECT_NEAR(ra.balls[0].position.y, rb.balls[0].position.y, 0.5);
+  const auto& truth = frame.truth.balls(0);
+  EXPECT_LT(std::hypot(ra.balls[0].position.x - truth.x(), ra.balls[0].position.y - truth.y()), 5.0);
 }
 
 TEST(OpenClErrors, BadFramesAreRejectedWithTheCpuReferenceMessage) {

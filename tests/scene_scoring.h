@@ -110,13 +110,14 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) 
     if (alone) detector.reset();
     detector.process(blobs, frame.truth.t_capture(), out);
 
-    // Blobs near where a point at height z appears on the blob plane.
+    // Blobs near where a point at height z appears on the blob plane
+    // (streak blobs only for balls: they are never part of a robot).
     const Eigen::Vector3d cpos = cam.position();
-    auto blobNear = [&](double x, double y, double z, double tol) {
+    auto blobNear = [&](double x, double y, double z, double tol, bool ball = false) {
       const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - z);
       const double px = cpos.x() + k * (x - cpos.x()), py = cpos.y() + k * (y - cpos.y());
       for (const auto& b : blobs.blobs)
-        if (std::hypot(b.position.x - px, b.position.y - py) < tol) return true;
+        if ((ball || !b.streak) && std::hypot(b.position.x - px, b.position.y - py) < tol) return true;
       return false;
     };
     // Side blobs seen of a robot whose center blob was seen, else -1.
@@ -163,7 +164,7 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) 
     s.balls_detected += static_cast<int>(out.balls.size());
     for (const auto& b : frame.truth.balls()) {
       ++s.truth_balls;
-      const bool complete = blobNear(b.x(), b.y(), b.z(), 15);
+      const bool complete = blobNear(b.x(), b.y(), b.z(), 15, true);
       s.detectable_balls += complete;
       for (const auto& d : out.balls) {
         const double e = std::hypot(d.position.x - b.x(), d.position.y - b.y());

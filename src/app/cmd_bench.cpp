@@ -156,7 +156,7 @@ CommandFn addBenchCommand(CLI::App& root) {
     CameraProcessor processor(calibration, field, options);
 
     std::vector<Series> series = {{"bayer", {}}, {"rectify", {}}, {"color", {}},  {"gradient", {}},
-                                  {"sat", {}},   {"score", {}},   {"peaks", {}},  {"upload", {}}, {"pipeline", {}},
+                                  {"sat", {}},   {"score", {}},   {"peaks", {}},  {"streak", {}}, {"upload", {}}, {"pipeline", {}},
                                   {"detection", {}}, {"total", {}}};
     for (auto& s : series) s.ms.reserve(static_cast<size_t>(a->iterations));
     Detections detections;
@@ -172,7 +172,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       if (i < a->warmup) continue;
       const StageTimes& st = processor.pipeline().times();
       const double values[] = {st.bayer_ms, st.rectify_ms, st.color_ms, st.gradient_ms, st.sat_ms,
-                               st.score_ms, st.peaks_ms,   processor.pipeline().uploadMs(), processor.lastPipelineMs(),
+                               st.score_ms, st.peaks_ms,   st.streak_ms, processor.pipeline().uploadMs(), processor.lastPipelineMs(),
                                processor.lastDetectionMs(),
                                processor.lastPipelineMs() + processor.lastDetectionMs()};
       for (size_t k = 0; k < series.size(); ++k) series[k].ms.push_back(values[k]);

@@ -32,6 +32,8 @@ constexpr double kWeakPairAngleTolerance = 0.35;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
 constexpr int kSceneCheckMinRobots = 4;
+// Streak score at which a fast-ball candidate counts at full strength.
+constexpr double kStreakFullStrength = 0.6;
 
 ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
 
@@ -44,6 +46,7 @@ struct FrameBlob {
   float score = 0;
   bool valid = false;
   bool weak = false;  // a weak peak (BlobList::weak), listed after the blobs
+  bool streak = false;  // a fast-ball candidate: never part of a robot
   int robot = -1;  // accepted robot using this blob
 };
 
@@ -105,6 +108,23 @@ double sq(double v) { return v * v; }
 double slotAngle(int slot) {
   const FieldMm o = patternOffset(slot);
   return std::atan2(o.y, o.x);
+}
+
+// Share of the object's color in a streak's mean color (chromaticity
+// weight, which favours the brighter ball over the carpet): a streak's color
+// disc lies where the ball covered the cells for at least half the exposure.
+constexpr float kStreakMinShare = 0.5f;
+constexpr int kStreakShareSteps = 6;
+
+// Distance from a streak's color to the mix of `field` and `object` with the
+// object's share between kStreakMinShare and 1.
+float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object) {
+  float best = std::numeric_limits<float>::max();
+  for (int i = 0; i < kStreakShareSteps; ++i) {
+    const float a = kStreakMinShare + (1.f - kStreakMinShare) * i / (kStreakShareSteps - 1);
+    best = std::min(best, seen.distance(colorMix(field, 1.f - a, object, a, object, 0.f)));
+  }
+  return best;
 }
 double dist(const FieldMm& a, const FieldMm& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
@@ -225,9 +245,10 @@ struct Detector::Impl {
       f.color = colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]);
       for (int c = 0; c < 3; ++c) f.rgb[c] = b.rgb[c];
       f.score = b.score;
+      f.streak = b.streak;
       blobs.push_back(f);
-      // Invalid blobs are put far away so that no query finds them.
-      (weak ? weak_pts : pts).push_back(f.valid ? f.at_ref : FieldMm{1e12, 1e12});
+      // Invalid blobs and streaks are put far away so that no query finds them.
+      (weak ? weak_pts : pts).push_back(f.valid && !f.streak ? f.at_ref : FieldMm{1e12, 1e12});
     }
     index.build();
     if (!weak_pts.empty()) weak_index.build();
@@ -242,7 +263,7 @@ struct Detector::Impl {
     std::array<double, 64> ang;
     std::array<double, 64> dev;
     for (int c = 0; c < nb; ++c) {
-      if (!blobs[c].valid) continue;
+      if (!blobs[c].valid || blobs[c].streak) continue;
       const FieldMm cp = blobs[c].at_ref;
       const auto& hits = index.within(cp, opt.side_search_radius);
       int k = 0;
@@ -876,16 +897,22 @@ struct Detector::Impl {
       // had before a channel clipped (an overexposed ball looks yellowish).
       const ClippedColor seen(b.rgb);
       if (seen.saturated()) continue;
-      float d_or = seen.distance(orange);
-      if (color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange));
+      // A streak is the object's color mixed with the carpet it crossed:
+      // it is compared with each class's mixing line from the field color.
+      const ColorVec& field_color = frame_color[kField];
+      auto classDistance = [&](const ColorVec& c) {
+        return b.streak ? streakColorDistance(seen, field_color, c) : seen.distance(c);
+      };
+      float d_or = classDistance(orange);
+      if (color_map.valid()) d_or = std::min(d_or, classDistance(mapped_orange));
       float d_neg = std::numeric_limits<float>::max();
       int nearest_neg = kField;
       for (int k : negatives) {
-        const float d = seen.distance(frame_color[k]);
+        const float d = k == kField ? seen.distance(field_color) : classDistance(frame_color[k]);
         if (d < d_neg) d_neg = d, nearest_neg = k;
       }
       if (d_or >= d_neg) {
-        if (nearest_neg == kField) {
+        if (nearest_neg == kField && !b.streak) {
           for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
           ++field_n;
         }
@@ -903,8 +930,10 @@ struct Detector::Impl {
       if (inside) continue;
       const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
       const double color_conf = std::min(1.0, margin_ratio / 0.3);
+      // A streak's score is a shape measure of its own scale (streak_score.h).
       const double strength =
-          strength_ref > 0 ? std::min(1.0, b.score / (0.4 * strength_ref)) : 1.0;
+          b.streak ? std::min(1.0, b.score / kStreakFullStrength)
+                   : (strength_ref > 0 ? std::min(1.0, b.score / (0.4 * strength_ref)) : 1.0);
       BallCandidate c;
       c.blob = i;
       c.pos = p;
@@ -939,11 +968,22 @@ struct Detector::Impl {
       if (!dup && kept < opt.max_balls) ball_cands[kept++] = ball_cands[i];
     }
     ball_cands.resize(kept);
+    // A streak is trusted where it continues a ball track (on its course or
+    // kicked from a robot) or where nothing else in the frame is a ball: a
+    // colored region that stands out is weaker evidence than a round blob.
+    bool round_ball = false;
+    for (const auto& c : ball_cands) round_ball |= !blobs[c.blob].streak;
+    if (round_ball) {
+      ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
+                                      [&](const BallCandidate& c) { return blobs[c.blob].streak && c.track < 0; }),
+                       ball_cands.end());
+    }
 
     // Learn orange from a convincing ball, the field from the clutter.
     const float fp = static_cast<float>(opt.retention_force);
     const float fr = static_cast<float>(opt.reference_force);
-    if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5)
+    // (A streak's color is diluted by the carpet it passed over.)
+    if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && !blobs[ball_cands[0].blob].streak)
       classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
     if (field_n > 0) {
       for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;

@@ -20,7 +20,11 @@
 //     orange class among all learned classes, ranked by color margin, blob
 //     strength and temporal consistency (a ball track predicts straight on,
 //     mirrored at the walls; next to a robot it also takes a kicked ball
-//     anywhere within max_ball_speed reach).
+//     anywhere within max_ball_speed reach). Streak blobs (a ball too fast
+//     for the round blob score, pipeline/streak_score.h) are only ever ball
+//     candidates, their color compared with each class mixed with the field
+//     color (the carpet the ball crossed during the exposure); beside a
+//     round ball, a streak must continue a ball track.
 #include <array>
 #include <memory>
 #include <vector>

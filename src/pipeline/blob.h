@@ -13,6 +13,9 @@ struct Blob {
   GridPx grid;       // sub-cell peak position on the rectified grid
   float score = 0;   // normalised blob score (dimensionless, higher = stronger)
   float rgb[3] = {0, 0, 0};  // mean color of the blob's disc, 0..255 per channel
+  // Found by the fast-ball pass (streak_score.h), not by the blob score:
+  // only ever a ball candidate, `score` is the streak score.
+  bool streak = false;
 };
 
 // Blobs of one frame, strongest first. Capacity is reserved once per camera.

@@ -17,6 +17,7 @@
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 
 namespace dv {
@@ -89,6 +90,15 @@ struct CpuPipeline::Impl {
   float luma_mean = 100;
   bool has_frame = false;
 
+  // Fast-ball pass (streak_score.h): coarse chroma pairs, score, best
+  // orientation, peak mask, candidates per pool part.
+  StreakWindows streak;
+  std::vector<float> streak_coarse, streak_score;
+  std::vector<uint8_t> streak_orient, streak_mask;
+  std::vector<std::vector<StreakPeak>> streak_candidates;
+  std::vector<int> streak_counts;
+  std::vector<StreakPeak> streak_merged;
+
   StageTimes times;
   std::string error;
 
@@ -149,7 +159,21 @@ struct CpuPipeline::Impl {
               {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
     peak_mask.assign(eroded.datastart, eroded.dataend);
 
+    // A streak peak counts only where its whole footprint is seen.
+    streak = streakWindows(grid.scale, grid.width, grid.height);
+    {
+      streak_mask = streakPeakMask(table.valid.data(), grid.width, grid.height, streak);
+      const size_t coarse = static_cast<size_t>(streak.coarse_width) * streak.coarse_height;
+      const size_t lattice = streak_mask.size();
+      streak_coarse.assign(2 * coarse, 0);
+      streak_score.assign(lattice, 0);
+      streak_orient.assign(lattice, 0);
+    }
+
     const int parts = pool.size();
+    streak_candidates.assign(parts, std::vector<StreakPeak>(kMaxStreakCandidates));
+    streak_counts.assign(parts, 0);
+    streak_merged.reserve(static_cast<size_t>(kMaxStreakCandidates) * parts);
     // Room for candidates that the ratio test removes afterwards.
     const int capacity = 4 * std::max(16, opt.max_blobs + weakCapacity());
     candidates.assign(parts, std::vector<PeakCandidate>(capacity));
@@ -208,8 +232,17 @@ struct CpuPipeline::Impl {
     times.bayer_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
+    // The fast-ball pass's coarse rows are made from grid rows just
+    // rectified, while they are in cache (streak_score.h).
+    const int f = streak.factor, ch = streak.coarse_height;
     pool.parallelFor(gh, [&](int b, int e) {
-      rectifyChromaRows(readTable(), packed.data(), gain, ca.data(), cb.data(), b, e);
+      constexpr int kRows = 16;
+      for (int y = b; y < e; y += kRows) {
+        const int ye = std::min(e, y + kRows);
+        rectifyChromaRows(readTable(), packed.data(), gain, ca.data(), cb.data(), y, ye);
+        streakCoarseRows(ca.data(), cb.data(), gw, streak, streak_coarse.data(), std::min(ch, (y + f - 1) / f),
+                         std::min(ch, (ye + f - 1) / f));
+      }
     });
     times.rectify_ms = msSince(t0);
 
@@ -383,8 +416,8 @@ struct CpuPipeline::Impl {
     }
     times.color_ms = msSince(t0);
 
-
     const float gain = 1.0f / (luma_mean * kPackedChromaScale);
+    double coarse_ms = 0;  // the banded path's share of the fast-ball pass
     if (banded) {
       t0 = std::chrono::steady_clock::now();
       bandedScore(raw, gain);
@@ -398,6 +431,13 @@ struct CpuPipeline::Impl {
       times.rectify_ms = 0;
       times.gradient_ms = times.sat_ms = 0;
       times.score_ms = wall - times.bayer_ms;
+      // The fast-ball pass's coarse rows from the chroma planes the bands
+      // wrote (one grid row in each coarse row is read).
+      t0 = std::chrono::steady_clock::now();
+      pool.parallelFor(streak.coarse_height, [&](int b, int e) {
+        streakCoarseRows(ca.data(), cb.data(), grid.width, streak, streak_coarse.data(), b, e);
+      });
+      coarse_ms = msSince(t0);
     } else {
       wholePlaneScore(raw, bayer, gain);
     }
@@ -491,9 +531,46 @@ struct CpuPipeline::Impl {
              static_cast<size_t>(weakCapacity()));
     }
     times.peaks_ms = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    findStreaks(out);
+    times.streak_ms = msSince(t0) + coarse_ms;
     times.total_ms = msSince(t_start);
     has_frame = true;
     return true;
+  }
+
+  // Fast balls (streak_score.h): candidates the blob score missed, appended
+  // after the blobs, strongest first. The coarse rows were made with the
+  // rectification.
+  void findStreaks(BlobList& out) {
+    const int lh = streak.lattice_height;
+    pool.parallelFor(lh, [&](int b, int e) {
+      streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
+    });
+    forParts(lh, [&](int p, int b, int e) {
+      streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
+                                            streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
+    });
+    streak_merged.clear();
+    for (size_t p = 0; p < streak_candidates.size(); ++p)
+      streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
+                           streak_candidates[p].begin() + streak_counts[p]);
+    std::sort(streak_merged.begin(), streak_merged.end(), [](const StreakPeak& a, const StreakPeak& b) {
+      if (a.score != b.score) return a.score > b.score;
+      return a.y != b.y ? a.y < b.y : a.x < b.x;
+    });
+    for (const StreakPeak& p : streak_merged) {
+      if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
+      const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
+      Blob blob;
+      blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
+      blob.position = grid.toField(blob.grid);
+      blob.score = p.score;
+      blob.streak = true;
+      meanColor(blob.grid, blob.rgb);
+      if (acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
+    }
   }
 
   // Bilinear RGB of grid cell k from the last frame (co-sited samples).

@@ -46,13 +46,15 @@ struct PipelineOptions {
 // the chroma conversion (done on the subsampled samples, since it is linear);
 // color_ms is only the frame brightness statistic; gradient_ms and sat_ms
 // (row prefix) are whole-plane passes of the circle score only (the quadrant
-// score makes its own G and table rows band by band, in score_ms); peaks_ms includes the ratio test, interpolation and blob colors.
+// score makes its own G and table rows band by band, in score_ms); peaks_ms includes the ratio test, interpolation and blob colors;
+// streak_ms is the fast-ball pass (streak_score.h) from its coarse chroma,
+// made while the rectified rows are in cache.
 // Where the CPU runs Bayer subsampling to score band by band (band_plan.h),
 // bayer_ms is the Bayer part's share of that pass (its thread time over the
 // threads), rectify_ms is 0 and score_ms is the rest of the pass.
 struct StageTimes {
   double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
-         peaks_ms = 0, total_ms = 0;
+         peaks_ms = 0, streak_ms = 0, total_ms = 0;
 };
 
 // Parses "rggb", "grbg", "gbrg", "bggr" or "none" (case-insensitive); false if unknown.

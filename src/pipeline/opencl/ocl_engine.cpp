@@ -45,17 +45,20 @@ struct OclEngine::Buffers {
   cl_mem packed = nullptr, remap_index = nullptr, remap_frac = nullptr, mask = nullptr;
   cl_mem chroma = nullptr, gdot = nullptr, sat = nullptr, score = nullptr;
   cl_mem results = nullptr, results_host = nullptr, half = nullptr;
+  cl_mem streak_coarse = nullptr, streak_score = nullptr, streak_orient = nullptr, streak_mask = nullptr,
+         streak_shape = nullptr, streak_list = nullptr;
   uint32_t* results_mapped = nullptr;  // pinned host copy of the results header + peaks
 
   cl_kernel subsample = nullptr, rectify = nullptr, gradient = nullptr, sat_rows = nullptr,
-            sat_cols = nullptr, score_k = nullptr, peaks = nullptr;
+            sat_cols = nullptr, score_k = nullptr, peaks = nullptr, streak_coarse_k = nullptr,
+            streak_score_k = nullptr, streak_peaks_k = nullptr;
   size_t subsample_local[2] = {16, 16}, pixel_local[2] = {32, 8};
   size_t sat_rows_local = 256, sat_cols_local[2] = {32, 8};
 
   // Events of the last frame: upload, subsample, rectify, gradient, sat rows,
   // sat columns, score, peaks, download (+ second download).
-  enum { kUpload, kSubsample, kRectify, kGradient, kSatRows, kSatCols, kScore, kPeaks, kDownload,
-         kDownload2, kEvents };
+  enum { kUpload, kSubsample, kRectify, kGradient, kSatRows, kSatCols, kScore, kPeaks, kStreakCoarse,
+         kStreakScore, kStreakPeaks, kDownload, kDownload2, kStreakDownload, kEvents };
   cl_event events[kEvents] = {};
 
   void releaseEvents() {
@@ -65,10 +68,12 @@ struct OclEngine::Buffers {
 
   ~Buffers() {
     releaseEvents();
-    for (cl_kernel k : {subsample, rectify, gradient, sat_rows, sat_cols, score_k, peaks})
+    for (cl_kernel k : {subsample, rectify, gradient, sat_rows, sat_cols, score_k, peaks, streak_coarse_k,
+                        streak_score_k, streak_peaks_k})
       if (k) clReleaseKernel(k);
     for (cl_mem m : {input_host, input_dev, packed, remap_index, remap_frac, mask, chroma, gdot, sat,
-                     score, results, results_host, half})
+                     score, results, results_host, half, streak_coarse, streak_score, streak_orient,
+                     streak_mask, streak_shape, streak_list})
       if (m) clReleaseMemObject(m);
   }
 };
@@ -95,6 +100,20 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   const int window = c.circle_score ? std::max(1, static_cast<int>(std::floor(c.circle_radius + 0.5)))
                                     : c.quadrant_radius;
   const int reach = static_cast<int>(std::floor(c.gradient_scale)) + 1;
+  const size_t coarse_cells = static_cast<size_t>(c.streak_coarse_width) * c.streak_coarse_height;
+  const size_t lattice_cells = static_cast<size_t>(c.streak_lattice_width) * c.streak_lattice_height;
+  if (c.streak_factor < 1 || c.streak_coarse_width * c.streak_factor > c.grid_width ||
+      c.streak_coarse_height * c.streak_factor > c.grid_height || c.streak_mask.size() != lattice_cells ||
+      c.streak_lattice_width != (c.streak_coarse_width + 1) / 2 ||
+      c.streak_lattice_height != (c.streak_coarse_height + 1) / 2 ||
+      c.streak_capacity < 1)
+    throw std::invalid_argument("OpenCL pipeline: streak tables do not match the grid");
+  for (int o = 0; o < 4; ++o)
+    if (std::max(c.streak_side[o], c.streak_end[o]) * std::max(std::abs(c.streak_step_x[o]),
+                                                               std::abs(c.streak_step_y[o])) >= c.streak_margin)
+      throw std::invalid_argument("OpenCL pipeline: streak margin smaller than its footprint");
+  if (c.streak_gate_reach < 1 || c.streak_gate_reach >= c.streak_margin)
+    throw std::invalid_argument("OpenCL pipeline: streak margin smaller than its gate");
   if (c.quadrant_radius < 1 || c.inner_corner < 0 || c.inner_corner >= c.quadrant_radius ||
       c.margin < std::max(window, c.energy_window) + reach)
     throw std::invalid_argument("OpenCL pipeline: margin smaller than the score window");
@@ -119,6 +138,8 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     luma_count_ = static_cast<float>(std::max(1.0, n));
   }
   peaks_.reserve(capacity_);
+  streak_peaks_.reserve(c.streak_capacity);
+  streak_host_.assign(kHeaderWords + static_cast<size_t>(c.streak_capacity) * kPeakWords, 0);
 
   cl_context cx = ctx_->context();
   cl_int st = CL_SUCCESS;
@@ -169,6 +190,25 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     circle_norm = 1.0f / (4 * kGradientFixedPoint * std::max(1, count));
   }
   b_->half = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof half, half, "circle");
+  b_->streak_coarse = make(CL_MEM_READ_WRITE, coarse_cells * 8, nullptr, "streak chroma");
+  b_->streak_score = make(CL_MEM_READ_WRITE, lattice_cells * 4, nullptr, "streak score");
+  b_->streak_orient = make(CL_MEM_READ_WRITE, lattice_cells, nullptr, "streak orientation");
+  b_->streak_mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lattice_cells, c.streak_mask.data(),
+                         "streak mask");
+  {
+    // dv_streak_shape in streak.cl: five arrays of four ints.
+    cl_int shape[20];
+    for (int o = 0; o < 4; ++o) {
+      shape[o] = c.streak_step_x[o];
+      shape[4 + o] = c.streak_step_y[o];
+      shape[8 + o] = c.streak_inner[o];
+      shape[12 + o] = c.streak_side[o];
+      shape[16 + o] = c.streak_end[o];
+    }
+    b_->streak_shape = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof shape, shape, "streak shape");
+  }
+  b_->streak_list = make(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, streak_host_.size() * 4,
+                         streak_host_.data(), "streak list");
 
   cl_command_queue q = ctx_->queue();
   // Pinned host memory stays mapped for the engine's life where it is a DMA
@@ -341,8 +381,68 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argMem(b_->peaks, 22, b_->results);
   argInt(b_->peaks, 23, capacity_);
 
+  b_->streak_coarse_k = ctx_->createKernel("streak_coarse");
+  argMem(b_->streak_coarse_k, 0, b_->chroma);
+  argInt(b_->streak_coarse_k, 1, c.grid_width);
+  argInt(b_->streak_coarse_k, 2, c.streak_factor);
+  argInt(b_->streak_coarse_k, 3, c.streak_coarse_width);
+  argInt(b_->streak_coarse_k, 4, c.streak_coarse_height);
+  argMem(b_->streak_coarse_k, 5, b_->streak_coarse);
+  argMem(b_->streak_coarse_k, 6, b_->streak_list);
+
+  b_->streak_score_k = ctx_->createKernel("streak_score");
+  argMem(b_->streak_score_k, 0, b_->streak_coarse);
+  argInt(b_->streak_score_k, 1, c.streak_coarse_width);
+  argInt(b_->streak_score_k, 2, c.streak_coarse_height);
+  argInt(b_->streak_score_k, 3, c.streak_lattice_width);
+  argInt(b_->streak_score_k, 4, c.streak_lattice_height);
+  argInt(b_->streak_score_k, 5, c.streak_margin);
+  argMem(b_->streak_score_k, 6, b_->streak_shape);
+  argFloat(b_->streak_score_k, 7, c.streak_floor);
+  argInt(b_->streak_score_k, 8, c.streak_gate_reach);
+  argFloat(b_->streak_score_k, 9, c.streak_gate);
+  argMem(b_->streak_score_k, 10, b_->streak_score);
+  argMem(b_->streak_score_k, 11, b_->streak_orient);
+
+  b_->streak_peaks_k = ctx_->createKernel("streak_peaks");
+  {
+    cl_kernel sk = b_->streak_peaks_k;
+    argMem(sk, 0, b_->streak_score);
+    argMem(sk, 1, b_->streak_orient);
+    argMem(sk, 2, b_->streak_mask);
+    argInt(sk, 3, c.streak_coarse_width);
+    argInt(sk, 4, c.streak_lattice_width);
+    argInt(sk, 5, c.streak_lattice_height);
+    argFloat(sk, 6, c.streak_threshold);
+    argMem(sk, 7, b_->streak_shape);
+    argMem(sk, 8, b_->streak_coarse);
+    argInt(sk, 9, c.streak_factor);
+    argMem(sk, 10, b_->chroma);
+    argInt(sk, 11, c.grid_width);
+    argInt(sk, 12, c.grid_height);
+    argFloat(sk, 13, c.streak_refine_along);
+    argFloat(sk, 14, c.streak_refine_across);
+    argMem(sk, 15, input);
+    argInt(sk, 16, frame_stride_);
+    argInt(sk, 17, c.full_bayer ? 2 : (c.bayer ? 1 : 0));
+    arg(sk, 18, sizeof sites, &sites);
+    argInt(sk, 19, ws);
+    argInt(sk, 20, hs);
+    argMem(sk, 21, b_->remap_index);
+    argMem(sk, 22, b_->remap_frac);
+    if (fp64_) {
+      const double r = c.color_radius;
+      arg(sk, 23, sizeof r, &r);
+    } else {
+      argFloat(sk, 23, static_cast<float>(c.color_radius));
+    }
+    argMem(sk, 24, b_->streak_list);
+    argInt(sk, 25, c.streak_capacity);
+  }
+
   size_t pixel_max = std::min(kernelMax(b_->rectify), kernelMax(b_->gradient));
-  pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), size_t{256}});
+  pixel_max = std::min({pixel_max, kernelMax(b_->score_k), kernelMax(b_->peaks), kernelMax(b_->streak_coarse_k),
+                        kernelMax(b_->streak_score_k), kernelMax(b_->streak_peaks_k), size_t{256}});
   pixel_max = floorPow2(pixel_max);
   b_->pixel_local[0] = std::min<size_t>(32, pixel_max);
   b_->pixel_local[1] = pixel_max / b_->pixel_local[0];
@@ -385,6 +485,7 @@ bool OclEngine::run() {
   const auto t_start = std::chrono::steady_clock::now();
   error_.clear();
   peaks_.clear();
+  streak_peaks_.clear();
   peaks_found_ = 0;
   b_->releaseEvents();
   if (!mapped_ && !frameBuffer()) return false;
@@ -431,6 +532,18 @@ bool OclEngine::run() {
   if ((st = clEnqueueNDRangeKernel(q, b_->peaks, 2, nullptr, grid_global, pl, 0, nullptr,
                                    &ev[Buffers::kPeaks])) != CL_SUCCESS)
     return fail("peak extraction", st);
+  const size_t coarse_global[2] = {roundUp(c.streak_coarse_width, pl[0]), roundUp(c.streak_coarse_height, pl[1])};
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_coarse_k, 2, nullptr, coarse_global, pl, 0, nullptr,
+                                   &ev[Buffers::kStreakCoarse])) != CL_SUCCESS)
+    return fail("streak chroma", st);
+  const size_t lattice_global[2] = {roundUp(c.streak_lattice_width, pl[0]),
+                                    roundUp(c.streak_lattice_height, pl[1])};
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_score_k, 2, nullptr, lattice_global, pl, 0, nullptr,
+                                   &ev[Buffers::kStreakScore])) != CL_SUCCESS)
+    return fail("streak score", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_peaks_k, 2, nullptr, lattice_global, pl, 0, nullptr,
+                                   &ev[Buffers::kStreakPeaks])) != CL_SUCCESS)
+    return fail("streak peaks", st);
 
   // Counters and the first peaks in one transfer; the rest only if needed.
   const int first = std::min(capacity_, kFirstPeaksRead);
@@ -447,6 +560,20 @@ bool OclEngine::run() {
                                 &ev[Buffers::kDownload2])) != CL_SUCCESS)
     return fail("peak list download", st);
   std::memcpy(&last_luma_mean_, &res[2], sizeof(float));
+  // The streak list is short: read whole.
+  if ((st = clEnqueueReadBuffer(q, b_->streak_list, CL_TRUE, 0, streak_host_.size() * 4, streak_host_.data(),
+                                0, nullptr, &ev[Buffers::kStreakDownload])) != CL_SUCCESS)
+    return fail("streak list download", st);
+  {
+    const int ns = std::min(static_cast<int>(streak_host_[0]), c.streak_capacity);
+    const auto* sp = reinterpret_cast<const OclPeak*>(streak_host_.data() + kHeaderWords);
+    streak_peaks_.assign(sp, sp + ns);
+    std::sort(streak_peaks_.begin(), streak_peaks_.end(), [](const OclPeak& a, const OclPeak& b) {
+      if (a.score != b.score) return a.score > b.score;
+      if (a.cell_y != b.cell_y) return a.cell_y < b.cell_y;
+      return a.cell_x < b.cell_x;
+    });
+  }
 
   const auto* found = reinterpret_cast<const OclPeak*>(res + kHeaderWords);
   peaks_.assign(found, found + n);
@@ -473,10 +600,11 @@ bool OclEngine::run() {
              eventMs(ev[Buffers::kSatCols], ev[Buffers::kSatCols]);
   t.score_ms = eventMs(ev[Buffers::kScore], ev[Buffers::kScore]);
   t.peaks_ms = eventMs(ev[Buffers::kPeaks], ev[Buffers::kPeaks]);
+  t.streak_ms = eventMs(ev[Buffers::kStreakCoarse], ev[Buffers::kStreakPeaks]);
   t.download_ms = eventMs(ev[Buffers::kDownload], ev[Buffers::kDownload]) +
-                  eventMs(ev[Buffers::kDownload2], ev[Buffers::kDownload2]);
-  t.device_ms = eventMs(ev[Buffers::kUpload],
-                        ev[Buffers::kDownload2] ? ev[Buffers::kDownload2] : ev[Buffers::kDownload]);
+                  eventMs(ev[Buffers::kDownload2], ev[Buffers::kDownload2]) +
+                  eventMs(ev[Buffers::kStreakDownload], ev[Buffers::kStreakDownload]);
+  t.device_ms = eventMs(ev[Buffers::kUpload], ev[Buffers::kStreakDownload]);
   b_->releaseEvents();
   t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
   return true;
@@ -525,6 +653,10 @@ std::vector<uint32_t> OclEngine::readSat() const {
 }
 std::vector<float> OclEngine::readScore() const {
   return readAll<float>(ctx_->queue(), b_->score, 1ull * cfg_.grid_width * cfg_.grid_height);
+}
+std::vector<float> OclEngine::readStreakScore() const {
+  return readAll<float>(ctx_->queue(), b_->streak_score,
+                        1ull * cfg_.streak_lattice_width * cfg_.streak_lattice_height);
 }
 float OclEngine::lastLumaMean() const { return last_luma_mean_; }
 

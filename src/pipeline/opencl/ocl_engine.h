@@ -59,6 +59,21 @@ struct OclEngineConfig {
   float weak_threshold = 0;
   int max_weak_blobs = 0;
 
+  // Fast-ball pass (pipeline/streak_score.h, StreakWindows): coarse grid,
+  // per-orientation steps (along: step_x, step_y), inner half run, side and
+  // end steps, refinement window (grid cells), threshold, floor and gate,
+  // and the coarse peak mask.
+  int streak_factor = 2, streak_coarse_width = 0, streak_coarse_height = 0, streak_margin = 7;
+  int streak_lattice_width = 0, streak_lattice_height = 0;  // every other coarse cell
+  int streak_step_x[4] = {1, 1, 0, -1}, streak_step_y[4] = {0, 1, 1, 1};
+  int streak_inner[4] = {1, 1, 1, 1}, streak_side[4] = {3, 2, 3, 2}, streak_end[4] = {6, 4, 6, 4};
+  float streak_refine_along = 10, streak_refine_across = 5;
+  float streak_threshold = 0.45f, streak_floor = 1.0f;
+  int streak_gate_reach = 6;  // coarse cells to the gate's samples
+  float streak_gate = 0.2f;
+  std::vector<uint8_t> streak_mask;
+  int streak_capacity = 256;
+
   // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
   bool pinned_input = true;
 };
@@ -73,7 +88,7 @@ struct OclPeak {
 // the host wall time of run() (upload to peak list on the host).
 struct OclStageTimes {
   double upload_ms = 0, bayer_ms = 0, rectify_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
-         peaks_ms = 0, download_ms = 0;
+         peaks_ms = 0, streak_ms = 0, download_ms = 0;
   double device_ms = 0;  // first command's start to last command's end
   double wall_ms = 0;
 };
@@ -105,7 +120,11 @@ class OclEngine {
   // Peaks above the threshold (up to max_blobs), then all weak peaks, each
   // part strongest first.
   const std::vector<OclPeak>& peaks() const { return peaks_; }
-  // Peaks found before truncation (may exceed the list).
+  // Streak peaks of the fast-ball pass, strongest first (ties by lattice
+  // cell, row then column); x, y: the refined grid position, cell_x, cell_y:
+  // the lattice peak cell.
+  const std::vector<OclPeak>& streakPeaks() const { return streak_peaks_; }
+  // Peaks found before truncation to max_blobs (may exceed the list).
   int peaksFound() const { return peaks_found_; }
   const OclStageTimes& times() const { return times_; }
   const std::string& error() const { return error_; }
@@ -116,6 +135,7 @@ class OclEngine {
   std::vector<int32_t> readGradient() const;  // fixed point, x 65536
   std::vector<uint32_t> readSat() const;      // (w+1) x (h+1)
   std::vector<float> readScore() const;
+  std::vector<float> readStreakScore() const;  // score lattice
   float lastLumaMean() const;                 // frame brightness used by the last frame
 
   // Only the upload of one frame (for comparison with the end-to-end time).
@@ -143,6 +163,8 @@ class OclEngine {
   int capacity_ = 0;
   float luma_count_ = 1;
   std::vector<OclPeak> peaks_;
+  std::vector<OclPeak> streak_peaks_;
+  std::vector<uint32_t> streak_host_;  // the streak list read back
   int peaks_found_ = 0;
   OclStageTimes times_;
   std::string error_;

@@ -12,6 +12,7 @@
 #include "pipeline/kernels.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 
 namespace dv {
@@ -74,6 +75,29 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
               cv::getStructuringElement(cv::MORPH_RECT, {2 * cfg.margin + 1, 2 * cfg.margin + 1}), {-1, -1}, 1,
               cv::BORDER_CONSTANT, 0);
     cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
+    streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
+    const StreakWindows& sw = streak_;
+    cfg.streak_mask = streakPeakMask(table.valid.data(), grid_.width, grid_.height, sw);
+    cfg.streak_factor = sw.factor;
+    cfg.streak_coarse_width = sw.coarse_width;
+    cfg.streak_coarse_height = sw.coarse_height;
+    cfg.streak_lattice_width = sw.lattice_width;
+    cfg.streak_lattice_height = sw.lattice_height;
+    cfg.streak_margin = sw.margin;
+    for (int o = 0; o < kStreakOrientations; ++o) {
+      cfg.streak_step_x[o] = sw.step_x[o];
+      cfg.streak_step_y[o] = sw.step_y[o];
+      cfg.streak_inner[o] = sw.inner[o];
+      cfg.streak_side[o] = sw.side[o];
+      cfg.streak_end[o] = sw.end[o];
+    }
+    cfg.streak_refine_along = static_cast<float>(sw.refine_along);
+    cfg.streak_refine_across = static_cast<float>(sw.refine_across);
+    cfg.streak_threshold = kStreakThreshold;
+    cfg.streak_floor = kStreakFloor;
+    cfg.streak_gate_reach = sw.gate_reach;
+    cfg.streak_gate = kStreakGate;
+    cfg.streak_capacity = kMaxStreakCandidates;
   }
   engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
   const auto& ec = engine_->config();
@@ -164,6 +188,18 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
       reach_.keep(b.grid.x, b.grid.y);
     }
   }
+  // Fast-ball streaks, as the CPU reference (streak_score.h).
+  for (const auto& p : engine_->streakPeaks()) {
+    const StreakPeak cell{static_cast<int>(p.cell_x), static_cast<int>(p.cell_y), p.score};
+    if (nearBlob(out.blobs, streakPeakCenter(streak_, cell), grid_.scale)) continue;
+    Blob b;
+    b.grid = {p.x, p.y};
+    b.position = grid_.toField(b.grid);
+    b.score = p.score;
+    b.streak = true;
+    b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
+    if (acceptStreakBlob(out.blobs, b, grid_.scale)) out.blobs.push_back(b);
+  }
   const auto& t = engine_->times();
   times_.bayer_ms = t.bayer_ms;
   times_.rectify_ms = t.rectify_ms;  // fused with the chroma transform
@@ -172,6 +208,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   times_.sat_ms = t.sat_ms;
   times_.score_ms = t.score_ms;
   times_.peaks_ms = t.peaks_ms + t.download_ms;
+  times_.streak_ms = t.streak_ms;
   times_.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }

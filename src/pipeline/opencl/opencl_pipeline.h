@@ -11,6 +11,7 @@
 #include "pipeline/backend.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/opencl/ocl_engine.h"
+#include "pipeline/streak_score.h"
 
 namespace dv {
 
@@ -42,6 +43,7 @@ class OpenClPipeline final : public PixelPipeline {
   CameraModel camera_;
   PipelineOptions opt_;
   RectifiedGrid grid_;
+  StreakWindows streak_;  // the fast-ball pass's footprint on this grid
   std::unique_ptr<OclEngine> engine_;
   BlobSpacing spacing_;  // one blob per object
   BlobSpacing reach_;    // where weak peaks may lie: near a blob

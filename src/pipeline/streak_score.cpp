@@ -1,0 +1,272 @@
+#include "pipeline/streak_score.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "pipeline/score_windows.h"
+
+namespace dv {
+
+StreakWindows streakWindows(double grid_scale, int grid_width, int grid_height) {
+  StreakWindows w;
+  w.factor = std::max(1, static_cast<int>(std::lround(kStreakCellMm / grid_scale)));
+  w.coarse_width = grid_width / w.factor;
+  w.coarse_height = grid_height / w.factor;
+  w.lattice_width = (w.coarse_width + kStreakLatticeStep - 1) / kStreakLatticeStep;
+  w.lattice_height = (w.coarse_height + kStreakLatticeStep - 1) / kStreakLatticeStep;
+  const double cell = w.factor * grid_scale;
+  w.margin = 1;
+  for (int o = 0; o < kStreakOrientations; ++o) {
+    const double step = cell * std::hypot(w.step_x[o], w.step_y[o]);
+    w.inner[o] = std::max(1, static_cast<int>(std::lround(kStreakInnerMm / step)));
+    w.side[o] = std::max(w.inner[o] + 1, static_cast<int>(std::lround(kStreakSideMm / step)));
+    w.end[o] = std::max(w.side[o], static_cast<int>(std::lround(kStreakEndMm / step)));
+    w.margin = std::max(w.margin, std::max(w.side[o], w.end[o]) + 1);
+  }
+  w.gate_reach = w.end[0];
+  // The centroid window: inside the end and side samples, less a margin for
+  // the coarse cell they average.
+  w.refine_along = static_cast<float>((kStreakEndMm - 0.5 * cell) / grid_scale);
+  w.refine_across = static_cast<float>((kStreakSideMm - 0.5 * cell) / grid_scale);
+  return w;
+}
+
+std::vector<uint8_t> streakPeakMask(const uint8_t* valid, int grid_width, int grid_height, const StreakWindows& w) {
+  const int reach = (w.margin + 1) * w.factor;
+  const cv::Mat seen(grid_height, grid_width, CV_8UC1, const_cast<uint8_t*>(valid));
+  cv::Mat deep;
+  cv::erode(seen, deep, cv::getStructuringElement(cv::MORPH_RECT, {2 * reach + 1, 2 * reach + 1}), {-1, -1}, 1,
+            cv::BORDER_CONSTANT, 0);
+  std::vector<uint8_t> mask(static_cast<size_t>(w.lattice_width) * w.lattice_height, 0);
+  const int f = w.factor * kStreakLatticeStep;
+  for (int j = 0; j < w.lattice_height; ++j)
+    for (int i = 0; i < w.lattice_width; ++i)
+      mask[static_cast<size_t>(j) * w.lattice_width + i] = deep.at<uint8_t>(j * f + w.factor / 2, i * f + w.factor / 2);
+  return mask;
+}
+
+__attribute__((target_clones("avx2", "default"))) void streakCoarseRows(const float* ca, const float* cb, int width,
+                                                                         const StreakWindows& w, float* coarse,
+                                                                         int cy_begin, int cy_end) {
+  const int f = w.factor, cw = w.coarse_width;
+  const float norm = 1.0f / static_cast<float>(f);
+  const size_t gw = width;
+  for (int cy = cy_begin; cy < cy_end; ++cy) {
+    // The first grid row of the box only: half the memory traffic of the
+    // whole box, and the ball spans many rows.
+    const float* a = ca + static_cast<size_t>(cy) * f * gw;
+    const float* b = cb + static_cast<size_t>(cy) * f * gw;
+    float* out = coarse + 2 * static_cast<size_t>(cy) * cw;
+    if (f == 2) {  // the usual case, in a loop the compiler vectorises
+      for (int cx = 0; cx < cw; ++cx) {
+        out[2 * cx] = (a[2 * cx] + a[2 * cx + 1]) * norm;
+        out[2 * cx + 1] = (b[2 * cx] + b[2 * cx + 1]) * norm;
+      }
+      continue;
+    }
+    for (int cx = 0; cx < cw; ++cx) {
+      float sa = 0, sb = 0;
+      for (int i = 0; i < f; ++i) sa += a[cx * f + i], sb += b[cx * f + i];
+      out[2 * cx] = sa * norm;
+      out[2 * cx + 1] = sb * norm;
+    }
+  }
+}
+
+namespace {
+
+struct Pair {
+  float a, b;
+};
+
+inline Pair at(const float* coarse, int cw, int x, int y) {
+  const float* p = coarse + 2 * (static_cast<size_t>(y) * cw + x);
+  return {p[0], p[1]};
+}
+
+// Inner mean and the four surround samples of orientation o at (x, y).
+inline void footprint(const float* coarse, const StreakWindows& w, int o, int x, int y, Pair& inner,
+                      Pair s[4]) {
+  const int cw = w.coarse_width;
+  const int ux = w.step_x[o], uy = w.step_y[o];
+  const int vx = -uy, vy = ux;
+  const int n = w.inner[o];
+  float ia = 0, ib = 0;
+  for (int k = -n; k <= n; ++k) {
+    const Pair c = at(coarse, cw, x + k * ux, y + k * uy);
+    ia += c.a, ib += c.b;
+  }
+  const float inv = 1.0f / static_cast<float>(2 * n + 1);
+  inner = {ia * inv, ib * inv};
+  const int sd = w.side[o], e = w.end[o];
+  s[0] = at(coarse, cw, x + sd * vx, y + sd * vy);
+  s[1] = at(coarse, cw, x - sd * vx, y - sd * vy);
+  s[2] = at(coarse, cw, x + e * ux, y + e * uy);
+  s[3] = at(coarse, cw, x - e * ux, y - e * uy);
+}
+
+}  // namespace
+
+namespace {
+
+// The full score of one cell (all orientations) into best / best_o.
+inline void cellScore(const float* coarse, const StreakWindows& w, int x, int y, float& best, uint8_t& best_o) {
+  best = 0;
+  best_o = 0;
+  for (int o = 0; o < kStreakOrientations; ++o) {
+    Pair inner, s[4];
+    footprint(coarse, w, o, x, y, inner, s);
+    float da[4], db[4], ma = 0, mb = 0, sq = 0;
+    for (int k = 0; k < 4; ++k) {
+      da[k] = inner.a - s[k].a;
+      db[k] = inner.b - s[k].b;
+      ma += da[k], mb += db[k];
+      sq += da[k] * da[k] + db[k] * db[k];
+    }
+    ma *= 0.25f, mb *= 0.25f;
+    float lo = da[0] * ma + db[0] * mb;
+    for (int k = 1; k < 4; ++k) lo = std::min(lo, da[k] * ma + db[k] * mb);
+    const float v = lo / (0.25f * sq + kStreakFloor);
+    if (v > best) best = v, best_o = static_cast<uint8_t>(o);
+  }
+}
+
+// Gate of lattice cells i0..i0+n of coarse row y into pass[]: squared
+// chroma distance of the cell from the mean of the four cells `r` away along
+// the axes (off any ball or streak up to the footprint's length).
+__attribute__((target_clones("avx2", "default"))) void gateRow(const float* coarse, int cw, int r, int i0,
+                                                               int n, int y, uint8_t* pass) {
+  constexpr int s = 2 * kStreakLatticeStep;  // floats between lattice cells
+  const float* c = coarse + 2 * (static_cast<size_t>(y) * cw + static_cast<size_t>(i0) * kStreakLatticeStep);
+  const float* up = c - 2 * static_cast<ptrdiff_t>(r) * cw;
+  const float* dn = c + 2 * static_cast<ptrdiff_t>(r) * cw;
+  for (int i = 0; i < n; ++i) {
+    const float ma = 0.25f * (((c[s * i - 2 * r] + c[s * i + 2 * r]) + up[s * i]) + dn[s * i]);
+    const float mb = 0.25f * (((c[s * i + 1 - 2 * r] + c[s * i + 1 + 2 * r]) + up[s * i + 1]) + dn[s * i + 1]);
+    const float da = c[s * i] - ma, db = c[s * i + 1] - mb;
+    pass[i] = da * da + db * db > kStreakGate;
+  }
+}
+
+}  // namespace
+
+void streakScoreRows(const float* coarse, const StreakWindows& w, float* score, uint8_t* orientation,
+                     int j_begin, int j_end) {
+  const int cw = w.coarse_width, ch = w.coarse_height, m = w.margin, lw = w.lattice_width;
+  constexpr int kStep = kStreakLatticeStep;
+  // Lattice columns whose coarse cell has a full footprint: [i_lo, i_hi).
+  const int i_lo = (m + kStep - 1) / kStep, i_hi = std::max(i_lo, (cw - m + kStep - 1) / kStep);
+  constexpr int kChunk = 64;
+  uint8_t pass[kChunk];
+  for (int j = j_begin; j < j_end; ++j) {
+    float* srow = score + static_cast<size_t>(j) * lw;
+    uint8_t* orow = orientation + static_cast<size_t>(j) * lw;
+    std::fill(srow, srow + lw, 0.0f);
+    std::fill(orow, orow + lw, uint8_t{0});
+    const int y = j * kStep;
+    if (y < m || y >= ch - m) continue;
+    for (int i0 = i_lo; i0 < i_hi; i0 += kChunk) {
+      const int n = std::min(kChunk, i_hi - i0);
+      gateRow(coarse, cw, w.gate_reach, i0, n, y, pass);
+      for (int k = 0; k < n; ++k)
+        if (pass[k]) cellScore(coarse, w, (i0 + k) * kStep, y, srow[i0 + k], orow[i0 + k]);
+    }
+  }
+}
+
+int findStreakPeakRows(const float* score, const uint8_t* mask, const StreakWindows& w, StreakPeak* out,
+                       int count, int capacity, int j_begin, int j_end) {
+  const int lw = w.lattice_width, lh = w.lattice_height;
+  j_begin = std::max(j_begin, 1);
+  j_end = std::min(j_end, lh - 1);
+  for (int y = j_begin; y < j_end; ++y) {
+    const float* row = score + static_cast<size_t>(y) * lw;
+    for (int x = 1; x < lw - 1; ++x) {
+      const float c = row[x];
+      if (!(c > kStreakThreshold) || !mask[static_cast<size_t>(y) * lw + x]) continue;
+      // Strict toward the top-left, non-strict toward the bottom-right: a
+      // plateau gives one peak.
+      bool peak = true;
+      for (int dy = -1; dy <= 1 && peak; ++dy)
+        for (int dx = -1; dx <= 1 && peak; ++dx) {
+          if (!dx && !dy) continue;
+          const float n = row[x + static_cast<ptrdiff_t>(dy) * lw + dx];
+          const bool before = dy < 0 || (dy == 0 && dx < 0);
+          peak = before ? c > n : c >= n;
+        }
+      if (!peak) continue;
+      if (count >= capacity) return count;
+      out[count++] = {x, y, c};
+    }
+  }
+  return count;
+}
+
+GridPx refineStreak(const float* ca, const float* cb, int width, int height, const float* coarse,
+                    const StreakWindows& w, const StreakPeak& p, int orientation) {
+  Pair inner, s[4];
+  const int px = p.x * kStreakLatticeStep, py = p.y * kStreakLatticeStep;  // coarse cell
+  footprint(coarse, w, orientation, px, py, inner, s);
+  const float ba = 0.25f * (s[0].a + s[1].a + s[2].a + s[3].a);
+  const float bb = 0.25f * (s[0].b + s[1].b + s[2].b + s[3].b);
+  const float da = inner.a - ba, db = inner.b - bb;
+  const float d2 = da * da + db * db;
+  const double f = w.factor;
+  const double cx = px * f + 0.5 * (f - 1), cy = py * f + 0.5 * (f - 1);
+  if (!(d2 > 0)) return {cx, cy};
+  const double len = std::hypot(w.step_x[orientation], w.step_y[orientation]);
+  const double ux = w.step_x[orientation] / len, uy = w.step_y[orientation] / len;
+  const double ra = w.refine_along, rc = w.refine_across;
+  const double reach = std::hypot(ra, rc);
+  const int x0 = std::max(0, static_cast<int>(std::ceil(cx - reach)));
+  const int x1 = std::min(width - 1, static_cast<int>(std::floor(cx + reach)));
+  const int y0 = std::max(0, static_cast<int>(std::ceil(cy - reach)));
+  const int y1 = std::min(height - 1, static_cast<int>(std::floor(cy + reach)));
+  const float ka = da / d2, kb = db / d2;
+  double sw = 0, sx = 0, sy = 0;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const double ox = x - cx, oy = y - cy;
+      const double along = ox * ux + oy * uy, across = -ox * uy + oy * ux;
+      if (std::abs(along) > ra || std::abs(across) > rc) continue;
+      const size_t k = static_cast<size_t>(y) * width + x;
+      const float proj = (ca[k] - ba) * ka + (cb[k] - bb) * kb - 0.25f;
+      if (!(proj > 0)) continue;
+      sw += proj, sx += proj * ox, sy += proj * oy;
+    }
+  }
+  if (!(sw > 0)) return {cx, cy};
+  return {cx + sx / sw, cy + sy / sw};
+}
+
+GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p) {
+  const double f = w.factor;
+  const int px = p.x * kStreakLatticeStep, py = p.y * kStreakLatticeStep;
+  return {px * f + 0.5 * (f - 1), py * f + 0.5 * (f - 1)};
+}
+
+bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale) {
+  const double near2 = std::pow(kStreakBlobDistanceMm / grid_scale, 2);
+  for (const Blob& b : blobs) {
+    const double dx = b.grid.x - g.x, dy = b.grid.y - g.y;
+    if (dx * dx + dy * dy < near2) return true;
+  }
+  return false;
+}
+
+bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double grid_scale) {
+  const double near2 = std::pow(kStreakBlobDistanceMm / grid_scale, 2);
+  int streaks = 0;
+  for (const Blob& b : blobs) {
+    const double dx = b.grid.x - streak.grid.x, dy = b.grid.y - streak.grid.y;
+    if (dx * dx + dy * dy < near2) return false;
+    streaks += b.streak;
+  }
+  if (streaks >= kMaxStreakBlobs) return false;
+  const float hi = std::max({streak.rgb[0], streak.rgb[1], streak.rgb[2]});
+  const float lo = std::min({streak.rgb[0], streak.rgb[1], streak.rgb[2]});
+  return hi - lo >= kMinBlobSaturation * (hi + 1);
+}
+
+}  // namespace dv
