@@ -300,6 +300,12 @@ struct CpuPipeline::Impl {
         rowPointers(done_, a, b);
         rectifyChromaCells(m_.bands.index.data() + band_.index_offset + (done_ - band_.lo) * w,
                            t.frac.data() + done_ * w, band_.stride, box_, gain_, a, b, w);
+        // The fast-ball pass's coarse row that reads this own row, while it
+        // is in cache (each own row belongs to one band, so each is made once).
+        const int f = m_.streak.factor, c = done_ / f;
+        if (done_ % f == 0 && done_ >= band_.y_begin && done_ < band_.y_end && c < m_.streak.coarse_height)
+          streakCoarseRows(m_.ca.data(), m_.cb.data(), m_.grid.width, m_.streak, m_.streak_coarse.data(), c,
+                           c + 1);
       }
     }
 
@@ -417,7 +423,6 @@ struct CpuPipeline::Impl {
     times.color_ms = msSince(t0);
 
     const float gain = 1.0f / (luma_mean * kPackedChromaScale);
-    double coarse_ms = 0;  // the banded path's share of the fast-ball pass
     if (banded) {
       t0 = std::chrono::steady_clock::now();
       bandedScore(raw, gain);
@@ -431,13 +436,6 @@ struct CpuPipeline::Impl {
       times.rectify_ms = 0;
       times.gradient_ms = times.sat_ms = 0;
       times.score_ms = wall - times.bayer_ms;
-      // The fast-ball pass's coarse rows from the chroma planes the bands
-      // wrote (one grid row in each coarse row is read).
-      t0 = std::chrono::steady_clock::now();
-      pool.parallelFor(streak.coarse_height, [&](int b, int e) {
-        streakCoarseRows(ca.data(), cb.data(), grid.width, streak, streak_coarse.data(), b, e);
-      });
-      coarse_ms = msSince(t0);
     } else {
       wholePlaneScore(raw, bayer, gain);
     }
@@ -534,7 +532,7 @@ struct CpuPipeline::Impl {
 
     t0 = std::chrono::steady_clock::now();
     findStreaks(out);
-    times.streak_ms = msSince(t0) + coarse_ms;
+    times.streak_ms = msSince(t0);
     times.total_ms = msSince(t_start);
     has_frame = true;
     return true;
