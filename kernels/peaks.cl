@@ -82,6 +82,39 @@ inline float3 dv_sample_rgb(__global const uchar* raw, int stride, int bayer, in
   return (float3)(r, g, b);
 }
 
+// Mean color of the grid cells within `rad` of (px, py), each sampled
+// bilinearly from the co-sited samples as the CPU's meanColor does; 0 where
+// no cell is inside.
+inline float3 dv_disc_mean_rgb(__global const uchar* raw, int raw_stride, int bayer, int4 sites,
+                               int src_width, int src_height, __global const int* remap_index,
+                               __global const ushort* remap_frac, int width, int height, dv_real px,
+                               dv_real py, dv_real rad) {
+  const int x0 = max(0, (int)ceil(px - rad)), x1 = min(width - 1, (int)floor(px + rad));
+  const int y0 = max(0, (int)ceil(py - rad)), y1 = min(height - 1, (int)floor(py + rad));
+  float3 sum = (float3)(0.0f, 0.0f, 0.0f);
+  int n = 0;
+  for (int yy = y0; yy <= y1; ++yy) {
+    for (int xx = x0; xx <= x1; ++xx) {
+      if ((xx - px) * (xx - px) + (yy - py) * (yy - py) > rad * rad) continue;
+      const size_t kk = (size_t)yy * width + xx;
+      const int i = remap_index[kk];
+      const uint fr = remap_frac[kk];
+      const int sx = i % src_width, sy = i / src_width;
+      const float fx = (float)(fr & 255u) / 256.0f, fy = (float)(fr >> 8) / 256.0f;
+      const float w0 = (1 - fx) * (1 - fy), w1 = fx * (1 - fy), w2 = (1 - fx) * fy, w3 = fx * fy;
+      const float3 p0 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy);
+      const float3 p1 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy);
+      const float3 p2 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy + 1);
+      const float3 p3 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy + 1);
+      sum.x += w0 * p0.x + w1 * p1.x + w2 * p2.x + w3 * p3.x;
+      sum.y += w0 * p0.y + w1 * p1.y + w2 * p2.y + w3 * p3.y;
+      sum.z += w0 * p0.z + w1 * p1.z + w2 * p2.z + w3 * p3.z;
+      ++n;
+    }
+  }
+  return n ? sum / (float)n : (float3)(0.0f, 0.0f, 0.0f);
+}
+
 __kernel void find_peaks(__global const float* score, __global const uchar* mask, int width,
                          int height, int margin, float raw_threshold, float threshold,
                          __global const float2* chroma, int k, float a, float na, int window,
@@ -107,39 +140,16 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
 
   const float gx = x + dv_peak_offset(l, c, rt);
   const float gy = y + dv_peak_offset(up, c, dn);
-  const dv_real rad = color_radius;
-  const dv_real px = gx, py = gy;
-  const int x0 = max(0, (int)ceil(px - rad)), x1 = min(width - 1, (int)floor(px + rad));
-  const int y0 = max(0, (int)ceil(py - rad)), y1 = min(height - 1, (int)floor(py + rad));
-  float sum_r = 0, sum_g = 0, sum_b = 0;
-  int n = 0;
-  for (int yy = y0; yy <= y1; ++yy) {
-    for (int xx = x0; xx <= x1; ++xx) {
-      if ((xx - px) * (xx - px) + (yy - py) * (yy - py) > rad * rad) continue;
-      const size_t kk = (size_t)yy * width + xx;
-      const int i = remap_index[kk];
-      const uint fr = remap_frac[kk];
-      const int sx = i % src_width, sy = i / src_width;
-      const float fx = (float)(fr & 255u) / 256.0f, fy = (float)(fr >> 8) / 256.0f;
-      const float w0 = (1 - fx) * (1 - fy), w1 = fx * (1 - fy), w2 = (1 - fx) * fy, w3 = fx * fy;
-      const float3 p0 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy);
-      const float3 p1 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy);
-      const float3 p2 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy + 1);
-      const float3 p3 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy + 1);
-      sum_r += w0 * p0.x + w1 * p1.x + w2 * p2.x + w3 * p3.x;
-      sum_g += w0 * p0.y + w1 * p1.y + w2 * p2.y + w3 * p3.y;
-      sum_b += w0 * p0.z + w1 * p1.z + w2 * p2.z + w3 * p3.z;
-      ++n;
-    }
-  }
+  const float3 rgb = dv_disc_mean_rgb(raw, raw_stride, bayer, sites, src_width, src_height, remap_index,
+                                      remap_frac, width, height, gx, gy, color_radius);
   dv_peak p;
   p.x = gx;
   p.y = gy;
   p.score = ratio;
   p.cell_x = x;
   p.cell_y = y;
-  p.r = n ? sum_r / n : 0.0f;
-  p.g = n ? sum_g / n : 0.0f;
-  p.b = n ? sum_b / n : 0.0f;
+  p.r = rgb.x;
+  p.g = rgb.y;
+  p.b = rgb.z;
   ((__global dv_peak*)(results + DV_RESULT_HEADER))[slot] = p;
 }

@@ -165,38 +165,16 @@ __kernel void streak_peaks(__global const float* score, __global const uchar* or
   }
 
   // Mean color over the disc at the centroid (as find_peaks).
-  const dv_real rad = color_radius;
-  const int x0 = max(0, (int)ceil(gx - rad)), x1 = min(width - 1, (int)floor(gx + rad));
-  const int y0 = max(0, (int)ceil(gy - rad)), y1 = min(height - 1, (int)floor(gy + rad));
-  float sum_r = 0, sum_g = 0, sum_b = 0;
-  int n = 0;
-  for (int yy = y0; yy <= y1; ++yy) {
-    for (int xx = x0; xx <= x1; ++xx) {
-      if ((xx - gx) * (xx - gx) + (yy - gy) * (yy - gy) > rad * rad) continue;
-      const size_t kk = (size_t)yy * width + xx;
-      const int i = remap_index[kk];
-      const uint fr = remap_frac[kk];
-      const int sx = i % src_width, sy = i / src_width;
-      const float fx = (float)(fr & 255u) / 256.0f, fy = (float)(fr >> 8) / 256.0f;
-      const float w0 = (1 - fx) * (1 - fy), w1 = fx * (1 - fy), w2 = (1 - fx) * fy, w3 = fx * fy;
-      const float3 p0 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy);
-      const float3 p1 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy);
-      const float3 p2 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx, sy + 1);
-      const float3 p3 = dv_sample_rgb(raw, raw_stride, bayer, sites, src_width, src_height, sx + 1, sy + 1);
-      sum_r += w0 * p0.x + w1 * p1.x + w2 * p2.x + w3 * p3.x;
-      sum_g += w0 * p0.y + w1 * p1.y + w2 * p2.y + w3 * p3.y;
-      sum_b += w0 * p0.z + w1 * p1.z + w2 * p2.z + w3 * p3.z;
-      ++n;
-    }
-  }
+  const float3 rgb = dv_disc_mean_rgb(raw, raw_stride, bayer, sites, src_width, src_height, remap_index,
+                                      remap_frac, width, height, gx, gy, color_radius);
   dv_peak p;
   p.x = (float)gx;
   p.y = (float)gy;
   p.score = c;
   p.cell_x = li;
   p.cell_y = lj;
-  p.r = n ? sum_r / n : 0.0f;
-  p.g = n ? sum_g / n : 0.0f;
-  p.b = n ? sum_b / n : 0.0f;
+  p.r = rgb.x;
+  p.g = rgb.y;
+  p.b = rgb.z;
   ((__global dv_peak*)(list + DV_RESULT_HEADER))[slot] = p;
 }
