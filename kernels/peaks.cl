@@ -25,6 +25,21 @@ typedef struct {
   float x, y, score, r, g, b, cell_x, cell_y;
 } dv_peak;
 
+// Stores a peak in slot `slot` of a list kept after the results header.
+inline void dv_store_peak(__global uint* list, uint slot, float x, float y, float score, int cell_x,
+                          int cell_y, float3 rgb) {
+  dv_peak p;
+  p.x = x;
+  p.y = y;
+  p.score = score;
+  p.cell_x = cell_x;
+  p.cell_y = cell_y;
+  p.r = rgb.x;
+  p.g = rgb.y;
+  p.b = rgb.z;
+  ((__global dv_peak*)(list + DV_RESULT_HEADER))[slot] = p;
+}
+
 inline float dv_peak_offset(float l, float c, float r) {
   const float d = l - 2 * c + r;
   if (!(d < 0)) return 0.0f;
@@ -142,14 +157,5 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   const float gy = y + dv_peak_offset(up, c, dn);
   const float3 rgb = dv_disc_mean_rgb(raw, raw_stride, bayer, sites, src_width, src_height, remap_index,
                                       remap_frac, width, height, gx, gy, color_radius);
-  dv_peak p;
-  p.x = gx;
-  p.y = gy;
-  p.score = ratio;
-  p.cell_x = x;
-  p.cell_y = y;
-  p.r = rgb.x;
-  p.g = rgb.y;
-  p.b = rgb.z;
-  ((__global dv_peak*)(results + DV_RESULT_HEADER))[slot] = p;
+  dv_store_peak(results, slot, gx, gy, ratio, x, y, rgb);
 }

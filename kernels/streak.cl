@@ -167,14 +167,5 @@ __kernel void streak_peaks(__global const float* score, __global const uchar* or
   // Mean color over the disc at the centroid (as find_peaks).
   const float3 rgb = dv_disc_mean_rgb(raw, raw_stride, bayer, sites, src_width, src_height, remap_index,
                                       remap_frac, width, height, gx, gy, color_radius);
-  dv_peak p;
-  p.x = (float)gx;
-  p.y = (float)gy;
-  p.score = c;
-  p.cell_x = li;
-  p.cell_y = lj;
-  p.r = rgb.x;
-  p.g = rgb.y;
-  p.b = rgb.z;
-  ((__global dv_peak*)(list + DV_RESULT_HEADER))[slot] = p;
+  dv_store_peak(list, slot, (float)gx, (float)gy, c, li, lj, rgb);
 }
