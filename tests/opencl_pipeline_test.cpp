@@ -553,7 +553,9 @@ TEST(OpenClBackend, ChoiceFallbackAndErrors) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("--backend opencl"), std::string::npos) << what;
-    if (!devices.empty()) EXPECT_NE(what.find(devices.front().device_name), std::string::npos) << what;
+    if (!devices.empty()) {
+      EXPECT_NE(what.find(devices.front().device_name), std::string::npos) << what;
+    }
   }
   // auto with an unknown device falls back to the CPU reference.
   auto fallback = makePipeline(cam, field, {}, {Backend::Auto, "", "no-such-device-anywhere"}, &why);

@@ -24,6 +24,8 @@
 #include <vector>
 
 #include "pipeline/opencl/ocl_engine.h"
+#include "pipeline/pipeline_options.h"
+#include "pipeline/streak_windows.h"
 
 namespace {
 
@@ -211,8 +213,26 @@ int main(int argc, char** argv) {
     cfg.energy_window = cfg.quadrant_radius;
     cfg.energy_floor = 0.01f;
     cfg.color_radius = std::max(1.0, 13 / scale);
-    cfg.threshold = 0.1f;
+    // Thresholds and list sizes as the product's defaults, so the peak and
+    // weak-peak stages do the product's work.
+    const dv::PipelineOptions defaults;
+    cfg.threshold = static_cast<float>(defaults.threshold);
+    cfg.max_blobs = defaults.max_blobs;
+    cfg.weak_threshold = static_cast<float>(defaults.weak_threshold);
+    cfg.max_weak_blobs = defaults.max_weak_blobs;
     buildTables(cfg);
+    // The fast-ball pass over the whole view (every lattice cell whose
+    // footprint lies on the grid; the view has no unseen border).
+    const dv::StreakWindows sw = dv::streakWindows(scale, cfg.grid_width, cfg.grid_height);
+    std::vector<uint8_t> streak_mask(static_cast<size_t>(sw.lattice_width) * sw.lattice_height, 0);
+    for (int j = 0; j < sw.lattice_height; ++j)
+      for (int i = 0; i < sw.lattice_width; ++i) {
+        const int cx = i * dv::kStreakLatticeStep, cy = j * dv::kStreakLatticeStep;
+        streak_mask[static_cast<size_t>(j) * sw.lattice_width + i] =
+            cx > sw.margin && cy > sw.margin && cx < sw.coarse_width - 1 - sw.margin &&
+            cy < sw.coarse_height - 1 - sw.margin;
+      }
+    dv::applyStreakWindows(sw, std::move(streak_mask), cfg);
     std::printf("frame %dx%d Bayer RGGB -> grid %dx%d, gradient %.2f cells, quadrant %d cells\n", width,
                 height, cfg.grid_width, cfg.grid_height, cfg.gradient_scale, cfg.quadrant_radius);
 
@@ -242,8 +262,8 @@ int main(int argc, char** argv) {
 
     Stat upload_only{"pinned upload alone"}, upload{"upload (in frame)"}, bayer{"bayer+luma"},
         rectify{"rectify+chroma"}, gradient{"gradient dot"}, sat{"summed-area table"}, score{"blob score"},
-        peaks{"peaks"}, download{"peak list download"}, device{"device span"}, e2e{"end to end (host)"};
-    int found = 0;
+        peaks{"peaks"}, streak{"fast-ball streaks"}, download{"peak list download"}, device{"device span"}, e2e{"end to end (host)"};
+    int found = 0, streaks = 0;
     const int warmup = 20;
     for (int i = 0; i < warmup + frames; ++i) {
       const double up = engine.timeUploadOnly();
@@ -263,12 +283,14 @@ int main(int argc, char** argv) {
       sat.v.push_back(t.sat_ms);
       score.v.push_back(t.score_ms);
       peaks.v.push_back(t.peaks_ms);
+      streak.v.push_back(t.streak_ms);
       download.v.push_back(t.download_ms);
       device.v.push_back(t.device_ms);
       e2e.v.push_back(t.wall_ms);
       found = static_cast<int>(engine.peaks().size());
+      streaks = static_cast<int>(engine.streakPeaks().size());
     }
-    std::printf("blobs found: %d (discs drawn: %zu)\n", found, discs.size());
+    std::printf("peaks found: %d, streak candidates: %d (discs drawn: %zu)\n", found, streaks, discs.size());
     if (dump) {
       // Stage fingerprints, to compare devices: integer stages must agree exactly.
       auto fnv = [](const void* p, size_t n) {
@@ -291,7 +313,7 @@ int main(int argc, char** argv) {
     }
     std::printf("pageable upload alone: median %.4f ms\n", pageable);
     std::printf("%-22s %10s %10s   (ms, %d frames)\n", "", "median", "p99", frames);
-    for (const Stat* s : {&upload_only, &upload, &bayer, &rectify, &gradient, &sat, &score, &peaks, &download,
+    for (const Stat* s : {&upload_only, &upload, &bayer, &rectify, &gradient, &sat, &score, &peaks, &streak, &download,
                           &device, &e2e})
       std::printf("%-22s %10.4f %10.4f\n", s->name, percentile(s->v, 0.5), percentile(s->v, 0.99));
     const double e2e_med = percentile(e2e.v, 0.5), up_med = percentile(upload_only.v, 0.5);

@@ -8,30 +8,6 @@
 
 namespace dv {
 
-StreakWindows streakWindows(double grid_scale, int grid_width, int grid_height) {
-  StreakWindows w;
-  w.factor = std::max(1, static_cast<int>(std::lround(kStreakCellMm / grid_scale)));
-  w.coarse_width = grid_width / w.factor;
-  w.coarse_height = grid_height / w.factor;
-  w.lattice_width = (w.coarse_width + kStreakLatticeStep - 1) / kStreakLatticeStep;
-  w.lattice_height = (w.coarse_height + kStreakLatticeStep - 1) / kStreakLatticeStep;
-  const double cell = w.factor * grid_scale;
-  w.margin = 1;
-  for (int o = 0; o < kStreakOrientations; ++o) {
-    const double step = cell * std::hypot(w.step_x[o], w.step_y[o]);
-    w.inner[o] = std::max(1, static_cast<int>(std::lround(kStreakInnerMm / step)));
-    w.side[o] = std::max(w.inner[o] + 1, static_cast<int>(std::lround(kStreakSideMm / step)));
-    w.end[o] = std::max(w.side[o], static_cast<int>(std::lround(kStreakEndMm / step)));
-    w.margin = std::max(w.margin, std::max(w.side[o], w.end[o]) + 1);
-  }
-  w.gate_reach = w.end[0];
-  // The centroid window: inside the end and side samples, less a margin for
-  // the coarse cell they average.
-  w.refine_along = static_cast<float>((kStreakEndMm - 0.5 * cell) / grid_scale);
-  w.refine_across = static_cast<float>((kStreakSideMm - 0.5 * cell) / grid_scale);
-  return w;
-}
-
 std::vector<uint8_t> streakPeakMask(const uint8_t* valid, int grid_width, int grid_height, const StreakWindows& w) {
   const int reach = (w.margin + 1) * w.factor;
   const cv::Mat seen(grid_height, grid_width, CV_8UC1, const_cast<uint8_t*>(valid));

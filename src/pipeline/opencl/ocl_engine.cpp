@@ -78,6 +78,30 @@ struct OclEngine::Buffers {
   }
 };
 
+void applyStreakWindows(const StreakWindows& w, std::vector<uint8_t> mask, OclEngineConfig& c) {
+  c.streak_mask = std::move(mask);
+  c.streak_factor = w.factor;
+  c.streak_coarse_width = w.coarse_width;
+  c.streak_coarse_height = w.coarse_height;
+  c.streak_lattice_width = w.lattice_width;
+  c.streak_lattice_height = w.lattice_height;
+  c.streak_margin = w.margin;
+  for (int o = 0; o < kStreakOrientations; ++o) {
+    c.streak_step_x[o] = w.step_x[o];
+    c.streak_step_y[o] = w.step_y[o];
+    c.streak_inner[o] = w.inner[o];
+    c.streak_side[o] = w.side[o];
+    c.streak_end[o] = w.end[o];
+  }
+  c.streak_refine_along = static_cast<float>(w.refine_along);
+  c.streak_refine_across = static_cast<float>(w.refine_across);
+  c.streak_threshold = kStreakThreshold;
+  c.streak_floor = kStreakFloor;
+  c.streak_gate_reach = w.gate_reach;
+  c.streak_gate = kStreakGate;
+  c.streak_capacity = kMaxStreakCandidates;
+}
+
 OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
     : ctx_(std::move(ctx)), cfg_(std::move(config)), b_(std::make_unique<Buffers>()) {
   const auto& c = cfg_;
@@ -102,7 +126,8 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   const int reach = static_cast<int>(std::floor(c.gradient_scale)) + 1;
   const size_t coarse_cells = static_cast<size_t>(c.streak_coarse_width) * c.streak_coarse_height;
   const size_t lattice_cells = static_cast<size_t>(c.streak_lattice_width) * c.streak_lattice_height;
-  if (c.streak_factor < 1 || c.streak_coarse_width * c.streak_factor > c.grid_width ||
+  // OpenCL has no empty buffers: a grid too small for the footprint is refused here.
+  if (c.streak_factor < 1 || lattice_cells == 0 || c.streak_coarse_width * c.streak_factor > c.grid_width ||
       c.streak_coarse_height * c.streak_factor > c.grid_height || c.streak_mask.size() != lattice_cells ||
       c.streak_lattice_width != (c.streak_coarse_width + 1) / 2 ||
       c.streak_lattice_height != (c.streak_coarse_height + 1) / 2 ||

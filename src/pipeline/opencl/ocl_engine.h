@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "pipeline/opencl/ocl_runtime.h"
+#include "pipeline/streak_windows.h"
 
 namespace dv {
 
@@ -77,6 +78,10 @@ struct OclEngineConfig {
   // Where to put the frame: true = CL_MEM_ALLOC_HOST_PTR (pinned / zero copy).
   bool pinned_input = true;
 };
+
+// Sets the fast-ball fields of `c` from the CPU reference's footprint `w`
+// and its lattice mask, with the reference's thresholds.
+void applyStreakWindows(const StreakWindows& w, std::vector<uint8_t> mask, OclEngineConfig& c);
 
 // A peak on the grid, strongest first: interpolated position, score ratio,
 // mean color, and the peak cell itself.

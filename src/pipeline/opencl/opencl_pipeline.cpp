@@ -76,28 +76,7 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
               cv::BORDER_CONSTANT, 0);
     cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
     streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
-    const StreakWindows& sw = streak_;
-    cfg.streak_mask = streakPeakMask(table.valid.data(), grid_.width, grid_.height, sw);
-    cfg.streak_factor = sw.factor;
-    cfg.streak_coarse_width = sw.coarse_width;
-    cfg.streak_coarse_height = sw.coarse_height;
-    cfg.streak_lattice_width = sw.lattice_width;
-    cfg.streak_lattice_height = sw.lattice_height;
-    cfg.streak_margin = sw.margin;
-    for (int o = 0; o < kStreakOrientations; ++o) {
-      cfg.streak_step_x[o] = sw.step_x[o];
-      cfg.streak_step_y[o] = sw.step_y[o];
-      cfg.streak_inner[o] = sw.inner[o];
-      cfg.streak_side[o] = sw.side[o];
-      cfg.streak_end[o] = sw.end[o];
-    }
-    cfg.streak_refine_along = static_cast<float>(sw.refine_along);
-    cfg.streak_refine_across = static_cast<float>(sw.refine_across);
-    cfg.streak_threshold = kStreakThreshold;
-    cfg.streak_floor = kStreakFloor;
-    cfg.streak_gate_reach = sw.gate_reach;
-    cfg.streak_gate = kStreakGate;
-    cfg.streak_capacity = kMaxStreakCandidates;
+    applyStreakWindows(streak_, streakPeakMask(table.valid.data(), grid_.width, grid_.height, streak_), cfg);
   }
   engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
   const auto& ec = engine_->config();
