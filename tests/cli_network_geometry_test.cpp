@@ -16,6 +16,7 @@
 #include "net/geometry_publisher.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
+#include "temp_dir.h"
 
 namespace dv {
 namespace {
@@ -43,8 +44,8 @@ uint16_t randomPort() {
 }
 
 TEST(CliNetworkGeometry, RunTakesItsCalibrationFromThePublisher) {
-  const fs::path dir = fs::temp_directory_path() / ("dv_net_geometry_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const TempDir tmp("dv_net_geometry");
+  const fs::path& dir = tmp.path();
   SceneSpec spec = defaultScene();
   spec.frames = 1;
   writeScene(spec, dir.string());
@@ -75,7 +76,6 @@ TEST(CliNetworkGeometry, RunTakesItsCalibrationFromThePublisher) {
   EXPECT_EQ(missing_code, 2) << missing;
   EXPECT_NE(missing.find("no geometry with a calibration for camera 5"), std::string::npos) << missing;
   EXPECT_NE(missing.find("udp 224.5.23.2:" + std::to_string(po.port)), std::string::npos) << missing;
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 // Geometry files: the league's line tables, JSON and YAML round trips, the
 // shipped field files, and one clear InputError for each kind of bad input.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "temp_dir.h"
 #include "geometry/geometry_io.h"
 #include "geometry/proto_json.h"
 
@@ -20,12 +20,8 @@ namespace fs = std::filesystem;
 
 // A file in a fresh per-process folder; removed with the folder at exit.
 std::string tempPath(const std::string& name) {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("dv_geometry_io_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return (dir / name).string();
+  static const TempDir dir("dv_geometry_io_test");
+  return dir.file(name);
 }
 
 std::string writeTemp(const std::string& name, const std::string& text) {

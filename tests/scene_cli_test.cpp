@@ -16,6 +16,7 @@
 #include <string>
 
 #include "scene_scoring.h"
+#include "temp_dir.h"
 
 namespace dv {
 namespace {
@@ -69,9 +70,8 @@ nlohmann::json evalJson(const fs::path& dir, const std::string& detections) {
 }
 
 TEST(SceneCli, OutsiderSceneThroughSynthRunEvalAgreesWithTheLibrary) {
-  const fs::path dir = fs::temp_directory_path() / ("dv_scene_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const TempDir tmp("dv_scene_cli");
+  const fs::path& dir = tmp.path();
   const fs::path yaml = dir / "outsider.yaml";
   std::ofstream(yaml) << kScene;
   const std::string cli = std::string("'") + DV_CLI_PATH + "' ";
@@ -136,7 +136,6 @@ TEST(SceneCli, OutsiderSceneThroughSynthRunEvalAgreesWithTheLibrary) {
     EXPECT_GE((*o)["balls"]["recall"].get<double>(), 0.99);
     EXPECT_GE((*o)["balls"]["precision"].get<double>(), 0.99);
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

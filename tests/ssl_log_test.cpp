@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <cstdio>
@@ -9,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "temp_dir.h"
 #include "io/ssl_log.h"
 
 namespace dv {
@@ -19,9 +19,9 @@ namespace fs = std::filesystem;
 // A file name unique to this test and process, so parallel ctest runs of
 // the same binary do not share files.
 std::string tempPath(const std::string& name) {
+  static const TempDir root("dv_ssl_log");
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir = fs::path(::testing::TempDir()) /
-                 ("dv_ssl_log_" + std::to_string(::getpid()) + "_" + info->name());
+  const fs::path dir = root.path() / info->name();
   fs::create_directories(dir);
   return (dir / name).string();
 }

@@ -16,6 +16,7 @@
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "synth/sensor_model.h"
+#include "temp_dir.h"
 
 namespace dv {
 namespace {
@@ -350,8 +351,8 @@ TEST(SynthRender, FlickerChangesFrameBrightness) {
 }
 
 TEST(SynthRender, WriteSceneFilesAndGeometryRoundTrip) {
-  const fs::path dir = fs::temp_directory_path() / ("dv_synth_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const TempDir tmp("dv_synth_test");
+  const fs::path& dir = tmp.path();
   SceneSpec s = presetScene("two_cameras_overlap");
   scaleImages(s, 0.0625);
   s.frames = 2;
@@ -393,7 +394,6 @@ TEST(SynthRender, WriteSceneFilesAndGeometryRoundTrip) {
   }
   const std::vector<std::pair<uint32_t, uint32_t>> want = {{0, 0}, {0, 1}, {1, 0}, {1, 1}};
   EXPECT_EQ(order, want);
-  fs::remove_all(dir);
 }
 
 TEST(SynthRender, TwoCameraPresetSeesTheOverlapFromBoth) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "temp_dir.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
@@ -21,12 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string writeTemp(const std::string& name, const std::string& text) {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("dv_synth_scene_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  const fs::path p = dir / name;
+  static const TempDir dir("dv_synth_scene_test");
+  const fs::path p = dir.path() / name;
   std::ofstream(p, std::ios::binary) << text;
   return p.string();
 }
@@ -320,7 +317,9 @@ TEST(SynthScene, RandomRobotsStayOutOfTheGoalWalls) {
   for (uint64_t seed = 1; seed <= 20; ++seed)
     for (const auto& r : placeRandomRobots(s, 0, 8, 8, seed, 180, 10)) {
       const bool in_goal_rows = std::abs(r.position.y) < s.field.goal_width / 2.0 + 90;
-      if (in_goal_rows) EXPECT_GE(r.position.x, -back + 90) << "seed " << seed;
+      if (in_goal_rows) {
+        EXPECT_GE(r.position.x, -back + 90) << "seed " << seed;
+      }
     }
 }
 
