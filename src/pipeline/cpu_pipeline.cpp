@@ -151,13 +151,7 @@ struct CpuPipeline::Impl {
     gdot.assign(cells, 0);
     sat.assign(static_cast<size_t>(grid.width + 1) * (grid.height + 1), 0);
 
-    // A peak counts only where its whole window lies in the camera's view:
-    // erode the valid mask by the window reach.
-    cv::Mat valid(grid.height, grid.width, CV_8UC1, table.valid.data());
-    cv::Mat eroded;
-    cv::erode(valid, eroded, cv::getStructuringElement(cv::MORPH_RECT, {2 * margin + 1, 2 * margin + 1}),
-              {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
-    peak_mask.assign(eroded.datastart, eroded.dataend);
+    peak_mask = peakMask(table.valid, grid.width, grid.height, w);
 
     // A streak peak counts only where its whole footprint is seen.
     streak = streakWindows(grid.scale, grid.width, grid.height);

@@ -68,13 +68,7 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     cfg.region_y_begin = table.y_begin, cfg.region_y_end = table.y_end;
     cfg.remap_index = std::move(table.index);
     cfg.remap_frac = std::move(table.frac);
-    // A peak counts only where its whole window is seen (as the CPU reference).
-    cv::Mat valid(grid_.height, grid_.width, CV_8UC1, table.valid.data());
-    cv::Mat eroded;
-    cv::erode(valid, eroded,
-              cv::getStructuringElement(cv::MORPH_RECT, {2 * cfg.margin + 1, 2 * cfg.margin + 1}), {-1, -1}, 1,
-              cv::BORDER_CONSTANT, 0);
-    cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
+    cfg.peak_mask = peakMask(table.valid, grid_.width, grid_.height, w);  // as the CPU reference
     streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
     const StreakWindows& sw = streak_;
     cfg.streak_mask = streakPeakMask(table.valid.data(), grid_.width, grid_.height, sw);
