@@ -112,6 +112,16 @@ TEST(SideViewProbe, DISABLED_PerRobot) {
           const Blob* l = b || w ? nullptr : nearest(low_blobs.blobs, p, 12);
           const Blob* f = b ? b : w ? w : l;
           const char tag = b ? 'S' : w ? 'w' : l ? 'l' : '-';
+          if (!f) {
+            const auto ip = cam.fieldToImage({x, y, t.height()});
+            if (ip) {
+              const auto e = cam.imageToField({2447.5, ip->v}, t.height());
+              const auto e0 = cam.imageToField({-0.5, ip->v}, t.height());
+              const auto eb = cam.imageToField({ip->u, 2047.5}, t.height());
+              std::printf("{R%.0f L%.0f B%.0f mm}", e ? std::hypot(e->x - x, e->y - y) : -1,
+                          e0 ? std::hypot(e0->x - x, e0->y - y) : -1, eb ? std::hypot(eb->x - x, eb->y - y) : -1);
+            }
+          }
           if (f)
             std::printf("%c%.2f(%.0f,%.0f,%.0f)%.0f ", tag, f->score, f->rgb[0], f->rgb[1], f->rgb[2],
                         std::hypot(f->position.x - p.x, f->position.y - p.y));

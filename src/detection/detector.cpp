@@ -32,9 +32,9 @@ constexpr double kWeakPairAngleTolerance = 0.35;
 // A robot cut by the image border (center and two side blobs, the other
 // two slots outside the image) ranks at this fraction of a three-side
 // pattern's rank; a side blob counts as outside when any point of its disc
-// of this radius (the largest blob's, as the pixel stage's view mask) is.
+// is (the pixel stage takes peaks only where that disc is seen).
 constexpr double kEdgeRankFactor = 0.6;
-constexpr double kEdgeBlobRadius = 25;
+constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
 constexpr int kSceneCheckMinRobots = 4;
@@ -421,8 +421,7 @@ struct Detector::Impl {
   }
 
   // Whether the blob of `slot` at `pose` (on the search plane) cannot be
-  // seen whole: part of its disc of the largest blob radius lies outside the
-  // image (the pixel stage takes peaks only where that disc is seen).
+  // seen whole: part of its disc lies outside the image.
   bool slotOutOfView(const PatternPose& pose, int slot) const {
     const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
     const auto& c = camera.calibration();
@@ -615,24 +614,33 @@ struct Detector::Impl {
       r.colors = colors;
       r.id = patternId(colors);
     }
-    // A robot missing a side blob has two possible ids; ids are unique per
-    // team, so when a fully seen robot of its team holds one, it is the other.
+    // A robot missing side blobs has two (one missing) or four (two, at the
+    // image border) possible ids; ids are unique per team, so the ids fully
+    // seen teammates hold are ruled out. The guess is the first one left,
+    // the missing blobs taken as green before pink; the id is known when
+    // one is left.
     for (auto& r : robots) {
       r.id_known = r.fullPattern();
-      if (r.fullPattern() || __builtin_popcount(r.seen_sides) != 3) continue;
-      int missing = 0;
-      while (r.seen_sides >> missing & 1) ++missing;
-      auto alt = r.colors;
-      alt[missing] = MarkerColor::Pink;
-      const int alt_id = patternId(alt);
+      if (r.fullPattern()) continue;
+      int missing[4], m = 0;
+      for (int s = 0; s < 4; ++s)
+        if (!(r.seen_sides >> s & 1)) missing[m++] = s;
       auto taken = [&](int id) {
         for (const auto& o : robots)
           if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
         return false;
       };
-      const bool green_taken = taken(r.id), pink_taken = taken(alt_id);
-      if (green_taken && !pink_taken) r.id = alt_id, r.colors = alt;
-      r.id_known = green_taken != pink_taken;
+      int free = 0;
+      std::array<MarkerColor, 4> guess = r.colors;
+      for (int pinks = 0; pinks < (1 << m); ++pinks) {
+        auto c = r.colors;
+        for (int i = 0; i < m; ++i) c[missing[i]] = pinks >> i & 1 ? MarkerColor::Pink : MarkerColor::Green;
+        if (taken(patternId(c))) continue;
+        if (free++ == 0) guess = c;
+      }
+      r.colors = guess;
+      r.id = patternId(guess);
+      r.id_known = free == 1;
     }
 
     // How this camera shows the pattern colors tells where its orange is.
@@ -1134,6 +1142,9 @@ struct Detector::Impl {
       // The league's protocol has no unknown id, and a wrong one counts as
       // a false robot and a missed one: a guessed id is not reported.
       if (!r.id_known && !opt.report_guessed_ids) continue;
+      // One of four ids (two side blobs outside the image) is no guess
+      // worth reporting; a track or the teammates must tell it.
+      if (!r.id_known && r.n < kPatternSlots - 1) continue;
       RobotDetection d;
       d.team = r.team;
       d.id = r.id;

@@ -22,7 +22,7 @@ ScoreWindows scoreWindows(double scale, BlobScoreKind kind) {
   w.energy_window = circle ? static_cast<int>(std::lround(w.circle_radius)) : w.quadrant_radius;
   w.color_radius = std::max(1.0, kColorRadiusMm / scale);
   w.weak_reach = kWeakReachMm / scale;
-  w.view_reach = std::max(1, static_cast<int>(std::ceil(kMaxBlobRadiusMm / scale)));
+  w.view_reach = std::max(1, static_cast<int>(std::ceil(kSideBlobRadiusMm / scale)));
   return w;
 }
 
