@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "pipeline/kernels.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 
@@ -23,6 +24,26 @@ __attribute__((target_clones("avx2", "default"))) void gradientDotRowFrom(
     // Truncation (not lrintf, which the compiler will not vectorise);
     // its bias toward zero is symmetric for both signs.
     out[x] = static_cast<int32_t>((gxa * gya + gxb * gyb) * kGradientFixedPoint);
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void gradientFormRowFrom(
+    const float* const a_rows[5], const float* const b_rows[5], int width, double scale, const float* forms,
+    int32_t* out) {
+  const int k = static_cast<int>(std::floor(scale));
+  const float a = static_cast<float>(scale - k), na = 1 - a;
+  const int m = k + 1;
+  for (int x = 0; x < m; ++x) out[x] = 0, out[width - 1 - x] = 0;
+  const float *a0 = a_rows[0], *a1 = a_rows[1], *a_mid = a_rows[2], *a3 = a_rows[3], *a4 = a_rows[4];
+  const float *b0 = b_rows[0], *b1 = b_rows[1], *b_mid = b_rows[2], *b3 = b_rows[3], *b4 = b_rows[4];
+  for (int x = m; x < width - m; ++x) {
+    const float gxa = na * (a_mid[x + k] - a_mid[x - k]) + a * (a_mid[x + k + 1] - a_mid[x - k - 1]);
+    const float gya = na * (a3[x] - a1[x]) + a * (a4[x] - a0[x]);
+    const float gxb = na * (b_mid[x + k] - b_mid[x - k]) + a * (b_mid[x + k + 1] - b_mid[x - k - 1]);
+    const float gyb = na * (b3[x] - b1[x]) + a * (b4[x] - b0[x]);
+    const float* f = forms + 6 * (x / kFormBlock);
+    const float v = f[0] * (gxa * gxa + gxb * gxb) + f[1] * (gxa * gya + gxb * gyb) + f[2] * (gya * gya + gyb * gyb);
+    out[x] = static_cast<int32_t>(v * kGradientFixedPoint);
   }
 }
 
@@ -86,6 +107,33 @@ __attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(con
       }
     }
     for (int j = 0; j < cols; ++j) sum += acc[j];
+  }
+  return static_cast<float>(0.5 * sum / n);
+}
+
+float windowGradientEnergyForm(const float* ca, const float* cb, int width, double scale, int x, int y, int r,
+                               const float q[3], float give_up_above) {
+  const int k = static_cast<int>(std::floor(scale));
+  const float a = static_cast<float>(scale - k), na = 1 - a;
+  const size_t w = width;
+  const double n = static_cast<double>(2 * r + 1) * (2 * r + 1);
+  const double give_up_sum = 2.0 * static_cast<double>(give_up_above) * n;
+  double sum = 0;
+  for (int yy = y - r; yy <= y + r; ++yy) {
+    float row = 0;
+    for (int xx = x - r; xx <= x + r; ++xx) {
+      const float* am = ca + yy * w + xx;
+      const float* bm = cb + yy * w + xx;
+      const float gxa = na * (am[k] - am[-k]) + a * (am[k + 1] - am[-k - 1]);
+      const float gya = na * (am[k * w] - am[-k * static_cast<long>(w)]) +
+                        a * (am[(k + 1) * w] - am[-(k + 1) * static_cast<long>(w)]);
+      const float gxb = na * (bm[k] - bm[-k]) + a * (bm[k + 1] - bm[-k - 1]);
+      const float gyb = na * (bm[k * w] - bm[-k * static_cast<long>(w)]) +
+                        a * (bm[(k + 1) * w] - bm[-(k + 1) * static_cast<long>(w)]);
+      row += q[0] * (gxa * gxa + gxb * gxb) + 2 * q[1] * (gxa * gya + gxb * gyb) + q[2] * (gya * gya + gyb * gyb);
+    }
+    sum += row;
+    if (sum > give_up_sum) return give_up_above;
   }
   return static_cast<float>(0.5 * sum / n);
 }

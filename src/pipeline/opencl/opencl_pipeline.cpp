@@ -12,6 +12,7 @@
 #include "pipeline/kernels.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/view_stretch.h"
 #include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 
@@ -69,6 +70,14 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     cfg.remap_index = std::move(table.index);
     cfg.remap_frac = std::move(table.frac);
     cfg.peak_mask = peakMask(table.valid, grid_.width, grid_.height, w);  // as the CPU reference
+    const GradientForms forms = gradientForms(camera_, grid_, opt_.plane_height);
+    if (forms.any) {
+      cfg.form_block = kFormBlock;
+      cfg.form_blocks_x = forms.blocks_x;
+      cfg.gradient_forms = forms.coef;
+      cfg.form_plain = forms.plain;
+      cfg.form_plain_row = forms.plain_row;
+    }
     streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
     const StreakWindows& sw = streak_;
     cfg.streak_mask = streakPeakMask(table.valid.data(), grid_.width, grid_.height, sw);
