@@ -72,16 +72,16 @@ inline float dv_window_energy(__global const float2* chroma, int width, int k, f
   return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
 }
 
-// The same with the energy form q (pipeline/view_stretch.h), summed as
-// windowGradientEnergyForm: a float sum along each row, the rows added in
-// double (where available).
+// The same with the energy form q (pipeline/view_stretch.h), as
+// windowGradientEnergyForm.
 inline float dv_window_energy_form(__global const float2* chroma, int width, int k, float a, float na,
                                    int x, int y, int r, __global const float* q) {
   const size_t w = width;
+  const float qxx = q[0], qxy2 = 2 * q[1], qyy = q[2];
   dv_real sum = 0;
-  for (int yy = y - r; yy <= y + r; ++yy) {
-    float row = 0;
-    for (int xx = x - r; xx <= x + r; ++xx) {
+  for (int xx = x - r; xx <= x + r; ++xx) {
+    float col = 0;
+    for (int yy = y - r; yy <= y + r; ++yy) {
       __global const float2* mid = chroma + yy * w;
       const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
       const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
@@ -90,9 +90,9 @@ inline float dv_window_energy_form(__global const float2* chroma, int width, int
       const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
       const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
       const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
-      row += q[0] * (gxa * gxa + gxb * gxb) + 2 * q[1] * (gxa * gya + gxb * gyb) + q[2] * (gya * gya + gyb * gyb);
+      col += qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb);
     }
-    sum += (dv_real)row;
+    sum += (dv_real)col;
   }
   return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
 }

@@ -117,29 +117,44 @@ __attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(con
   return static_cast<float>(0.5 * sum / n);
 }
 
-float windowGradientEnergyForm(const float* ca, const float* cb, int width, double scale, int x, int y, int r,
-                               const float q[3], float give_up_above) {
+__attribute__((target_clones("avx2", "default"))) float windowGradientEnergyForm(
+    const float* ca, const float* cb, int width, double scale, int x, int y, int r, const float q[3],
+    float give_up_above) {
+  // As windowGradientEnergy, with the energy form in each cell's term.
   const int k = static_cast<int>(std::floor(scale));
   const float a = static_cast<float>(scale - k), na = 1 - a;
+  const float qxx = q[0], qxy2 = 2 * q[1], qyy = q[2];
   const size_t w = width;
-  const double n = static_cast<double>(2 * r + 1) * (2 * r + 1);
+  const int side = 2 * r + 1;
+  const double n = static_cast<double>(side) * side;
   const double give_up_sum = 2.0 * static_cast<double>(give_up_above) * n;
   double sum = 0;
-  for (int yy = y - r; yy <= y + r; ++yy) {
-    float row = 0;
-    for (int xx = x - r; xx <= x + r; ++xx) {
-      const float* am = ca + yy * w + xx;
-      const float* bm = cb + yy * w + xx;
-      const float gxa = na * (am[k] - am[-k]) + a * (am[k + 1] - am[-k - 1]);
-      const float gya = na * (am[k * w] - am[-k * static_cast<long>(w)]) +
-                        a * (am[(k + 1) * w] - am[-(k + 1) * static_cast<long>(w)]);
-      const float gxb = na * (bm[k] - bm[-k]) + a * (bm[k + 1] - bm[-k - 1]);
-      const float gyb = na * (bm[k * w] - bm[-k * static_cast<long>(w)]) +
-                        a * (bm[(k + 1) * w] - bm[-(k + 1) * static_cast<long>(w)]);
-      row += q[0] * (gxa * gxa + gxb * gxb) + 2 * q[1] * (gxa * gya + gxb * gyb) + q[2] * (gya * gya + gyb * gyb);
+  constexpr int kStrip = 64;
+  for (int j0 = 0; j0 < side; j0 += kStrip) {
+    const int cols = std::min(kStrip, side - j0);
+    const int x0 = x - r + j0;
+    float acc[kStrip] = {};
+    for (int yy = y - r; yy <= y + r; ++yy) {
+      const float* am = ca + yy * w + x0;
+      const float* bm = cb + yy * w + x0;
+      const float *ap = ca + (yy + k) * w + x0, *an = ca + (yy - k) * w + x0;
+      const float *ap1 = ca + (yy + k + 1) * w + x0, *an1 = ca + (yy - k - 1) * w + x0;
+      const float *bp = cb + (yy + k) * w + x0, *bn = cb + (yy - k) * w + x0;
+      const float *bp1 = cb + (yy + k + 1) * w + x0, *bn1 = cb + (yy - k - 1) * w + x0;
+      for (int j = 0; j < cols; ++j) {
+        const float gxa = na * (am[j + k] - am[j - k]) + a * (am[j + k + 1] - am[j - k - 1]);
+        const float gya = na * (ap[j] - an[j]) + a * (ap1[j] - an1[j]);
+        const float gxb = na * (bm[j + k] - bm[j - k]) + a * (bm[j + k + 1] - bm[j - k - 1]);
+        const float gyb = na * (bp[j] - bn[j]) + a * (bp1[j] - bn1[j]);
+        acc[j] += qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb);
+      }
+      if (((yy - y + r) & 3) == 3) {
+        double partial = sum;
+        for (int j = 0; j < cols; ++j) partial += acc[j];
+        if (partial > give_up_sum) return give_up_above;
+      }
     }
-    sum += row;
-    if (sum > give_up_sum) return give_up_above;
+    for (int j = 0; j < cols; ++j) sum += acc[j];
   }
   return static_cast<float>(0.5 * sum / n);
 }

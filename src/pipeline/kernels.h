@@ -71,8 +71,7 @@ float windowGradientEnergy(const float* ca, const float* cb, int width, double s
                            int r, float give_up_above = std::numeric_limits<float>::infinity());
 
 // The same with the energy form q = (qxx, qxy, qyy) of view_stretch.h:
-// 1/2 sum_c qxx gx^2 + 2 qxy gx gy + qyy gy^2; row sums in float, added in
-// double (the OpenCL kernel sums the same way).
+// 1/2 sum_c qxx gx^2 + 2 qxy gx gy + qyy gy^2, summed in the same order.
 float windowGradientEnergyForm(const float* ca, const float* cb, int width, double scale, int x, int y, int r,
                                const float q[3], float give_up_above = std::numeric_limits<float>::infinity());
 
