@@ -42,7 +42,7 @@ GradientForms gradientForms(const CameraModel& camera, const RectifiedGrid& grid
       const double s = viewStretch(camera, grid.toField({cx, cy}), plane_height, d);
       const double k = std::round((s - 1) / kStretchStep) * kStretchStep;
       float* c = &f.coef[6 * (static_cast<size_t>(by) * f.blocks_x + bx)];
-      if (!(k > 0)) {
+      if (!(1 + k >= kMinStretch)) {
         c[0] = 0, c[1] = 1, c[2] = 0, c[3] = 1, c[4] = 0, c[5] = 1;
         continue;
       }
