@@ -6,8 +6,12 @@
 // reach of the border are 0.
 #pragma OPENCL FP_CONTRACT OFF
 
+// Where the view stretches blobs (pipeline/view_stretch.h) and the block
+// row is not plain: the whitened product, the form (f0, f1, f2) of the
+// cell's block: f0 gx^2 + f1 gx gy + f2 gy^2 summed over both channels.
 __kernel void gradient_dot(__global const float2* chroma, int width, int height, int k, float a,
-                           float na, __global int* gdot) {
+                           float na, __global int* gdot, __global const float* forms,
+                           __global const uchar* plain_row, int block, int blocks_x, int use_forms) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
   const int m = k + 1;
@@ -24,5 +28,11 @@ __kernel void gradient_dot(__global const float2* chroma, int width, int height,
   const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
   const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
   const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
+  if (use_forms && !plain_row[y / block]) {
+    __global const float* f = forms + 6 * ((y / block) * blocks_x + x / block);
+    const float v = f[0] * (gxa * gxa + gxb * gxb) + f[1] * (gxa * gya + gxb * gyb) + f[2] * (gya * gya + gyb * gyb);
+    gdot[y * w + x] = convert_int_rtz(v * DV_GRADIENT_FIXED_POINT);
+    return;
+  }
   gdot[y * w + x] = convert_int_rtz((gxa * gya + gxb * gyb) * DV_GRADIENT_FIXED_POINT);
 }

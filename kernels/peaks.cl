@@ -72,6 +72,31 @@ inline float dv_window_energy(__global const float2* chroma, int width, int k, f
   return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
 }
 
+// The same with the energy form q (pipeline/view_stretch.h), as
+// windowGradientEnergyForm.
+inline float dv_window_energy_form(__global const float2* chroma, int width, int k, float a, float na,
+                                   int x, int y, int r, __global const float* q) {
+  const size_t w = width;
+  const float qxx = q[0], qxy2 = 2 * q[1], qyy = q[2];
+  dv_real sum = 0;
+  for (int xx = x - r; xx <= x + r; ++xx) {
+    float col = 0;
+    for (int yy = y - r; yy <= y + r; ++yy) {
+      __global const float2* mid = chroma + yy * w;
+      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
+      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
+      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
+      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
+      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
+      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
+      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
+      col += qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb);
+    }
+    sum += (dv_real)col;
+  }
+  return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
+}
+
 // Co-sited RGB of sample (i, j), clamped to the image: BGR (bayer 0),
 // subsampled Bayer (1, sites rx, ry, bx, by) or full Bayer sampling (2).
 inline float3 dv_sample_rgb(__global const uchar* raw, int stride, int bayer, int4 sites, int ws,
@@ -137,7 +162,9 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
                          int bayer, int4 sites, int src_width, int src_height,
                          __global const int* remap_index,
                          __global const ushort* remap_frac, dv_real color_radius,
-                         __global uint* results, int capacity) {
+                         __global uint* results, int capacity, __global const float* forms,
+                         __global const uchar* form_plain, int form_block, int form_blocks_x,
+                         int use_forms) {
   const int x = get_global_id(0), y = get_global_id(1);
   // The brightness sum was consumed by the rectify stage; clear it for the next frame.
   if (x == 0 && y == 0) results[DV_RESULT_LUMA_SUM] = 0u;
@@ -147,7 +174,10 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   if (!(c > raw_threshold)) return;
   const float l = score[cell - 1], rt = score[cell + 1], up = score[cell - width], dn = score[cell + width];
   if (!(c > l && c >= rt && c > up && c >= dn && mask[cell])) return;
-  const float energy = dv_window_energy(chroma, width, k, a, na, x, y, window);
+  const int blk = (y / form_block) * form_blocks_x + x / form_block;
+  const float energy = use_forms && !form_plain[blk]
+                           ? dv_window_energy_form(chroma, width, k, a, na, x, y, window, forms + 6 * blk + 3)
+                           : dv_window_energy(chroma, width, k, a, na, x, y, window);
   const float ratio = c / (energy + energy_floor);
   if (!(ratio > threshold)) return;
   const uint slot = atomic_inc(&results[DV_RESULT_PEAK_COUNT]);

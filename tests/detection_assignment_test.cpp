@@ -377,5 +377,66 @@ TEST(DetectionAssignment, MissingSideBlobTakesTheIdNoOtherRobotHolds) {
   }
 }
 
+// A robot cut by the image border shows its center and two side blobs; its
+// other two slots lie outside the image. It is one of four ids: reported
+// only when fully seen teammates hold the other three. The same two blobs
+// missing inside the image are no robot.
+TEST(DetectionAssignment, RobotCutByTheImageBorderNeedsItsIdFromTeammates) {
+  const CameraModel cam(test::topDownCamera());
+  const auto& calib = cam.calibration();
+  const auto at = cam.imageToField({5, calib.image_height / 2.0}, 140);
+  ASSERT_TRUE(at);
+  // An orientation that puts exactly two side blobs (discs included) out.
+  test::TrueRobot a{Team::Yellow, 6, at->xy(), 0};
+  int out_count = 0;
+  for (double o = 0; o < 2 * kPi && out_count != 2; o += 0.1) {
+    a.orientation = o;
+    out_count = 0;
+    for (int i = 0; i < 4; ++i) {
+      const FieldMm off = RobotPatternGeometry::kSideBlobs[i];
+      const double x = a.position.x + std::cos(o) * off.x - std::sin(o) * off.y;
+      const double y = a.position.y + std::sin(o) * off.x + std::cos(o) * off.y;
+      bool out = false;
+      for (int k = 0; k < 8; ++k) {
+        const auto px = cam.fieldToImage({x + 20 * std::cos(k * kPi / 4), y + 20 * std::sin(k * kPi / 4), 140});
+        out |= !px || px->u < -0.5 || px->u > calib.image_width - 0.5;
+      }
+      a.present[i + 1] = !out;
+      out_count += out;
+    }
+  }
+  ASSERT_EQ(out_count, 2);
+  // The ids A could be: its seen sides, the unseen two either color.
+  std::vector<int> others;
+  for (int pinks = 0; pinks < 4; ++pinks) {
+    auto c = patternColors(a.id);
+    int k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (!a.present[i + 1]) c[i] = pinks >> k++ & 1 ? MarkerColor::Pink : MarkerColor::Green;
+    if (patternId(c) != a.id) others.push_back(patternId(c));
+  }
+  ASSERT_EQ(others.size(), 3u);
+  auto run = [&](const test::TrueRobot& robot, int teammates) {
+    SceneBuilder s(cam, 5);
+    s.addRobot(robot);
+    for (int i = 0; i < teammates; ++i)
+      s.addRobot({Team::Yellow, others[i], {2250.0 + 400 * i, 900}, 0.3 * i});
+    s.addRobot({Team::Blue, 3, {2600, -900}, 1.0});
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out);
+    for (const auto& r : out.robots)
+      if (std::hypot(r.position.x - robot.position.x, r.position.y - robot.position.y) < 15) return r.id;
+    return -1;
+  };
+  EXPECT_EQ(run(a, 0), -1) << "one of four ids";
+  EXPECT_EQ(run(a, 2), -1) << "one of two ids";
+  EXPECT_EQ(run(a, 3), a.id);
+  // The same blobs missing in the middle of the image: no robot.
+  test::TrueRobot inside = a;
+  inside.position = {2250, -600};
+  EXPECT_EQ(run(inside, 3), -1);
+}
+
 }  // namespace
 }  // namespace dv

@@ -78,26 +78,26 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   EXPECT_GE(s.ballPrecision(), 0.98);
   EXPECT_GE(s.detectableRecall(), 0.97);
   EXPECT_GE(s.detectableBallRecall(), 0.97);
-  // The overall bar. The side view does not reach it for robots (recall
-  // 0.75 over the 6 placements of DV_SCENE_FULL=1, 0.72 before weak peaks;
-  // every robot whose blobs reached the detector found). Far side blobs
-  // that peak at all mostly score 0.08..0.24 and are taken as weak peaks
-  // where the pattern predicts them (detection/weak_sides.h). Of the 15
-  // robots still lost, 14 show at most two side blobs even counting peaks
-  // down to 0.06: 5 within 3.2 m are partly hidden behind nearer robots, 9
-  // are 4.8..7.1 m away, where a side blob is 3-4 pixels tall, less than
-  // two periods of the red and blue sites, and lens blur stretches it along
-  // the viewing direction into an ellipse the round score windows miss
-  // (score windows stretched along the viewing direction would be needed);
-  // the 15th shows one side blob and two weak peaks. Its
-  // mosaic is sampled at every pixel (bayer_sampling.h), which did not
-  // change recall (0.73 with 2x2 subsampling; 0.72..0.73 on 3.65, 4.5 and
-  // 5.6 mm grids, before weak peaks). Robots missing a side blob are
-  // reported with a guessed id (3 of 6 wrong before weak peaks, 2 of 45
-  // ids wrong now).
+  // The overall bar. The side view does not reach it for robots: recall
+  // 0.933 over the 6 placements of DV_SCENE_FULL=1 (0.750 before the
+  // whitened gradient and the border rules, 0.72 before weak peaks),
+  // precision 1.000. Its far side blobs (4.8..7.1 m away, 2-4 pixels tall)
+  // are stretched along the viewing direction, at any angle on the grid;
+  // the gradient is whitened there (pipeline/view_stretch.h), which found
+  // 8 of the 10 far robots lost before. 5 robots near the image border had
+  // side blobs in the image but within a score window of its border; peaks
+  // now need only a side blob's disc in view (score_windows.h, peakMask).
+  // Of the 4 still lost, 2 are cut by the border (two side blobs outside
+  // the image: found, but one of four ids, so not reported) and 2 are
+  // 6.1 and 7.1 m away with two side blobs that do not peak. Robots
+  // missing a side blob are reported with a guessed id: 4 of 56 wrong (2 cut
+  // by the border, 2 far), against 2 of 45 before, so the side view's id
+  // bar is on the robots found with the right id (52 of 60, 43 before)
+  // besides the share (0.929).
   const bool side = std::string(GetParam()) == "side_view";
-  EXPECT_GE(s.recall(), side ? 0.75 : 0.97);
-  EXPECT_GE(s.idAccuracy(), side ? 0.95 : 0.99);
+  EXPECT_GE(s.recall(), side ? 0.93 : 0.97);
+  EXPECT_GE(s.idAccuracy(), side ? 0.92 : 0.99);
+  if (side) EXPECT_GE(s.recall() * s.idAccuracy(), fullRun() ? 0.86 : 0.8);
   EXPECT_GE(s.ballRecall(), 0.97);
 }
 

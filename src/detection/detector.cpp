@@ -29,6 +29,12 @@ constexpr double kWeakSideRankStep = 0.1;
 // blob (mm) and their angle around it (rad) near the pattern's.
 constexpr double kWeakPairRingTolerance = 15;
 constexpr double kWeakPairAngleTolerance = 0.35;
+// A robot cut by the image border (center and two side blobs, the other
+// two slots outside the image) ranks at this fraction of a three-side
+// pattern's rank; a side blob counts as outside when any point of its disc
+// is (the pixel stage takes peaks only where that disc is seen).
+constexpr double kEdgeRankFactor = 0.6;
+constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
 constexpr int kSceneCheckMinRobots = 4;
@@ -275,7 +281,7 @@ struct Detector::Impl {
         dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
         ++k;
       }
-      if (k < (weak_on ? 1 : 3)) continue;
+      if (k < (weak_on ? 1 : 2)) continue;
       if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
         for (int a = 0; a < kMaxNeighbors; ++a) {
           int best = a;
@@ -338,6 +344,7 @@ struct Detector::Impl {
               }
       }
       if (weak_on && !(best.rank > 0 && best.n == kPatternSlots)) completeWithWeak(c, nbr.data(), k, best);
+      if (best.rank <= 0) completeAtImageEdge(c, nbr.data(), k, best);
       if (best.rank > 0) hyps.push_back(best);
     }
   }
@@ -409,6 +416,61 @@ struct Detector::Impl {
         const int blob[2] = {c, nbr[a]}, slot[2] = {0, sa};
         const FieldMm pts[2] = {cp, pa};
         tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, opt.score_scale), kPatternSlots);
+      }
+    }
+  }
+
+  // Whether the blob of `slot` at `pose` (on the search plane) cannot be
+  // seen whole: part of its disc lies outside the image.
+  bool slotOutOfView(const PatternPose& pose, int slot) const {
+    const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
+    const auto& c = camera.calibration();
+    const double w = c.image_width, h = c.image_height;
+    constexpr int kRim = 8;
+    for (int i = 0; i < kRim; ++i) {
+      const double a = 2 * kPi * i / kRim;
+      const auto px = camera.fieldToImage({p.x + kEdgeBlobRadius * std::cos(a),
+                                           p.y + kEdgeBlobRadius * std::sin(a), ref_height});
+      if (!px || px->u < -0.5 || px->v < -0.5 || px->u > w - 0.5 || px->v > h - 0.5) return true;
+    }
+    return false;
+  }
+
+  // A robot at the image border: a center blob and two side blobs that fit
+  // the pattern tightly, with the other two side blobs' slots not seen whole
+  // (slotOutOfView). Ranked below every pattern with three side blobs; its
+  // id is a guess unless teammates or a track tell it.
+  void completeAtImageEdge(int c, const int* nbr, int k, Hypothesis& best) {
+    const FieldMm cp = blobs[c].at_ref;
+    auto onRing = [&](const FieldMm& p) {
+      return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
+    };
+    auto angleAround = [&](const FieldMm& p) { return std::atan2(p.y - cp.y, p.x - cp.x); };
+    for (int a = 0; a < k; ++a) {
+      const FieldMm pa = blobs[nbr[a]].at_ref;
+      if (!onRing(pa)) continue;
+      for (int b = a + 1; b < k; ++b) {
+        const FieldMm pb = blobs[nbr[b]].at_ref;
+        if (!onRing(pb)) continue;
+        const double seen = wrapAngle(angleAround(pb) - angleAround(pa));
+        for (int sa = 1; sa < kPatternSlots; ++sa)
+          for (int sb = 1; sb < kPatternSlots; ++sb) {
+            if (sa == sb || std::abs(wrapAngle(seen - (slotAngle(sb) - slotAngle(sa)))) > kWeakPairAngleTolerance)
+              continue;
+            Hypothesis h;
+            h.n = 3;
+            h.blob[0] = c, h.blob[1] = nbr[a], h.blob[2] = nbr[b];
+            h.slot[0] = 0, h.slot[1] = sa, h.slot[2] = sb;
+            const FieldMm pts[3] = {cp, pa, pb};
+            h.pose = fitPattern(pts, h.slot, 3, opt.score_scale);
+            if (h.pose.score < opt.min_weak_fit) continue;
+            bool unseen = true;
+            for (int s = 1; s < kPatternSlots && unseen; ++s)
+              if (s != sa && s != sb) unseen = slotOutOfView(h.pose, s);
+            if (!unseen) continue;
+            h.rank = h.pose.score * kFourBlobPenalty * kEdgeRankFactor;
+            if (h.rank > best.rank) best = h;
+          }
       }
     }
   }
@@ -552,24 +614,33 @@ struct Detector::Impl {
       r.colors = colors;
       r.id = patternId(colors);
     }
-    // A robot missing a side blob has two possible ids; ids are unique per
-    // team, so when a fully seen robot of its team holds one, it is the other.
+    // A robot missing side blobs has two (one missing) or four (two, at the
+    // image border) possible ids; ids are unique per team, so the ids fully
+    // seen teammates hold are ruled out. The guess is the first one left,
+    // the missing blobs taken as green before pink; the id is known when
+    // one is left.
     for (auto& r : robots) {
       r.id_known = r.fullPattern();
-      if (r.fullPattern() || __builtin_popcount(r.seen_sides) != 3) continue;
-      int missing = 0;
-      while (r.seen_sides >> missing & 1) ++missing;
-      auto alt = r.colors;
-      alt[missing] = MarkerColor::Pink;
-      const int alt_id = patternId(alt);
+      if (r.fullPattern()) continue;
+      int missing[4], m = 0;
+      for (int s = 0; s < 4; ++s)
+        if (!(r.seen_sides >> s & 1)) missing[m++] = s;
       auto taken = [&](int id) {
         for (const auto& o : robots)
           if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
         return false;
       };
-      const bool green_taken = taken(r.id), pink_taken = taken(alt_id);
-      if (green_taken && !pink_taken) r.id = alt_id, r.colors = alt;
-      r.id_known = green_taken != pink_taken;
+      int free = 0;
+      std::array<MarkerColor, 4> guess = r.colors;
+      for (int pinks = 0; pinks < (1 << m); ++pinks) {
+        auto c = r.colors;
+        for (int i = 0; i < m; ++i) c[missing[i]] = pinks >> i & 1 ? MarkerColor::Pink : MarkerColor::Green;
+        if (taken(patternId(c))) continue;
+        if (free++ == 0) guess = c;
+      }
+      r.colors = guess;
+      r.id = patternId(guess);
+      r.id_known = free == 1;
     }
 
     // How this camera shows the pattern colors tells where its orange is.
@@ -1071,6 +1142,9 @@ struct Detector::Impl {
       // The league's protocol has no unknown id, and a wrong one counts as
       // a false robot and a missed one: a guessed id is not reported.
       if (!r.id_known && !opt.report_guessed_ids) continue;
+      // One of four ids (two side blobs outside the image) is no guess
+      // worth reporting; a track or the teammates must tell it.
+      if (!r.id_known && r.n < kPatternSlots - 1) continue;
       RobotDetection d;
       d.team = r.team;
       d.id = r.id;

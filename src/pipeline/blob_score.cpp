@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "pipeline/kernels.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 
@@ -79,7 +80,8 @@ class PlaneRows final : public ChromaRowSource {
 };
 
 // G row y from the source (zero where the gradient reaches past the plane).
-void gradientRow(ChromaRowSource& src, int width, int height, double scale, int y, int32_t* out) {
+void gradientRow(ChromaRowSource& src, int width, int height, double scale, int y, int32_t* out,
+                 const GradientForms* forms) {
   const int k = static_cast<int>(std::floor(scale));
   const int m = k + 1;
   if (y < m || y >= height - m || width <= 2 * m) {
@@ -91,20 +93,22 @@ void gradientRow(ChromaRowSource& src, int width, int height, double scale, int 
   const float* a[5];
   const float* b[5];
   for (int i = 0; i < 5; ++i) src.rows(ys[i], a[4 - i], b[4 - i]);
-  gradientDotRowFrom(a, b, width, scale, out);
+  if (forms && !forms->plainRow(y)) gradientFormRowFrom(a, b, width, scale, forms->row(y), out);
+  else gradientDotRowFrom(a, b, width, scale, out);
 }
 
 }  // namespace
 
 void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int height, double scale,
                                 int r, int q, float* score, int y_begin, int y_end,
-                                std::vector<uint32_t>& scratch) {
+                                std::vector<uint32_t>& scratch, const GradientForms* forms) {
   PlaneRows rows(ca, cb, width);
-  quadrantMinScoreFromRows(rows, width, height, scale, r, q, score, y_begin, y_end, scratch);
+  quadrantMinScoreFromRows(rows, width, height, scale, r, q, score, y_begin, y_end, scratch, forms);
 }
 
 void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
-                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch) {
+                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch,
+                              const GradientForms* forms) {
   const size_t stride = static_cast<size_t>(width) + 1;
   const float norm = quadrantNorm(r, q);
   const int m = r + 1;
@@ -123,10 +127,10 @@ void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, doubl
   auto g_row = [&](int y) { return g_rows + static_cast<size_t>(y & 1) * width; };
   const int t0 = first - r;
   std::memset(ring(t0), 0, sizeof(uint32_t) * stride);
-  gradientRow(src, width, height, scale, t0, g_row(t0));
+  gradientRow(src, width, height, scale, t0, g_row(t0), forms);
   for (int t = t0 + 1; t <= last - 1 + r; ++t) {
     // Table row t: box row t - 1, i.e. G rows t - 1 and t (t < height - 1).
-    gradientRow(src, width, height, scale, t, g_row(t));
+    gradientRow(src, width, height, scale, t, g_row(t), forms);
     boxRowPrefix(g_row(t - 1), g_row(t), width, prefix);
     addRow(ring(t - 1), prefix, static_cast<int>(stride), ring(t));
     const int y = t - r;  // all of rows y - r .. y + r are now in the ring

@@ -19,6 +19,7 @@
 #include "pipeline/score_windows.h"
 #include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 
@@ -65,6 +66,7 @@ struct CpuPipeline::Impl {
   double circle_r = 1;        // cells
   int margin = 1;             // cells without a full score window
   double color_radius = 1;    // cells
+  GradientForms forms;        // whitened gradient where the view stretches blobs (view_stretch.h)
 
   std::vector<uint32_t> packed;  // chroma samples, int16 pairs (not for banded frames)
   // Bayer 2x2 subsampling with the quadrant score: from the mosaic to the
@@ -151,13 +153,8 @@ struct CpuPipeline::Impl {
     gdot.assign(cells, 0);
     sat.assign(static_cast<size_t>(grid.width + 1) * (grid.height + 1), 0);
 
-    // A peak counts only where its whole window lies in the camera's view:
-    // erode the valid mask by the window reach.
-    cv::Mat valid(grid.height, grid.width, CV_8UC1, table.valid.data());
-    cv::Mat eroded;
-    cv::erode(valid, eroded, cv::getStructuringElement(cv::MORPH_RECT, {2 * margin + 1, 2 * margin + 1}),
-              {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
-    peak_mask.assign(eroded.datastart, eroded.dataend);
+    peak_mask = peakMask(table.valid, grid.width, grid.height, w);
+    forms = gradientForms(camera, grid, opt.plane_height);
 
     // A streak peak counts only where its whole footprint is seen.
     streak = streakWindows(grid.scale, grid.width, grid.height);
@@ -272,7 +269,7 @@ struct CpuPipeline::Impl {
       pool.parallelFor(gh, [&](int b, int e) {
         thread_local std::vector<uint32_t> ring;  // column sums of the band, reused
         quadrantMinScoreFromChroma(ca.data(), cb.data(), gw, gh, gradient_scale, quadrant_r, inner_q,
-                                   score.data(), b, e, ring);
+                                   score.data(), b, e, ring, &forms);
       });
     }
     times.score_ms = msSince(t0);
@@ -350,7 +347,7 @@ struct CpuPipeline::Impl {
         band_bayer_ms[c] = msSince(t0);
         BandRows rows(*this, band, box, gain, halo.data(), halo.data() + static_cast<size_t>(bands.haloRows()) * gw);
         quadrantMinScoreFromRows(rows, gw, gh, gradient_scale, quadrant_r, inner_q, score.data(), band.y_begin,
-                                 band.y_end, ring);
+                                 band.y_end, ring, &forms);
         rows.makeUpTo(band.y_end);  // own rows the score did not need (next to the plane's edges)
       }
     });
@@ -452,8 +449,12 @@ struct CpuPipeline::Impl {
       for (int i = 0; i < n; ++i) {
         // Energy above score / low fails the ratio test (the floor only
         // lowers the ratio further), so its sum may stop there.
-        const float energy = windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, list[i].x,
-                                                  list[i].y, window, list[i].score / low);
+        const int x = list[i].x, y = list[i].y;
+        const float energy =
+            forms.plainAt(x, y)
+                ? windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, x, y, window, list[i].score / low)
+                : windowGradientEnergyForm(ca.data(), cb.data(), gw, gradient_scale, x, y, window,
+                                           forms.block(x, y) + 3, list[i].score / low);
         const float ratio = list[i].score / (energy + kEnergyFloor);
         if (ratio > low && ratio <= high) list[kept++] = {list[i].x, list[i].y, ratio};
       }

@@ -57,12 +57,23 @@ void gradientDotRow(const float* ca, const float* cb, int width, int height, dou
 void gradientDotRowFrom(const float* const a_rows[5], const float* const b_rows[5], int width, double scale,
                         int32_t* out);
 
+// The whitened product of view_stretch.h: per cell the quadratic form
+// a gx^2 + b gx gy + c gy^2 summed over both channels, (a, b, c) the first
+// three of the 6 floats per kFormBlock cells of `forms` (one block row).
+void gradientFormRowFrom(const float* const a_rows[5], const float* const b_rows[5], int width, double scale,
+                         const float* forms, int32_t* out);
+
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 cells around
 // (x, y), same gradient as gradientDotRows. Used only at peak candidates.
 // Stops early and returns give_up_above once the energy is known to exceed it
 // (callers that only compare against a limit need not sum the whole window).
 float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
                            int r, float give_up_above = std::numeric_limits<float>::infinity());
+
+// The same with the energy form q = (qxx, qxy, qyy) of view_stretch.h:
+// 1/2 sum_c qxx gx^2 + 2 qxy gx gy + qyy gy^2, summed in the same order.
+float windowGradientEnergyForm(const float* ca, const float* cb, int width, double scale, int x, int y, int r,
+                               const float q[3], float give_up_above = std::numeric_limits<float>::infinity());
 
 // Summed-area table (thesis A.3) in modular 32-bit arithmetic: a box sum is
 // exact whenever its true value fits in 32 bits, whatever the table values.
@@ -100,9 +111,12 @@ void quadrantMinScoreRows(const uint32_t* sat, int width, int height, int r, int
 // 2r + 1 rows (`scratch`, sized on first use), so neither G nor the table is
 // written out or read back. Equal to gradientDotRows, satRowPrefixRows,
 // satColumnPrefix and quadrantMinScoreRows in turn, bit for bit.
+// `forms` (view_stretch.h, may be null): the whitened product where a
+// block is not plain.
+struct GradientForms;
 void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int height, double scale,
                                 int r, int q, float* score, int y_begin, int y_end,
-                                std::vector<uint32_t>& scratch);
+                                std::vector<uint32_t>& scratch, const GradientForms* forms = nullptr);
 
 // Where a score pass reads its chroma rows: two whole planes, or rows that a
 // band makes as they are asked for (rows are asked for in rising order, the
@@ -117,7 +131,8 @@ class ChromaRowSource {
 };
 // quadrantMinScoreFromChroma with the chroma rows from `src`.
 void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
-                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch);
+                              float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch,
+                              const GradientForms* forms = nullptr);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "core/error.h"
@@ -21,7 +22,21 @@ ScoreWindows scoreWindows(double scale, BlobScoreKind kind) {
   w.energy_window = circle ? static_cast<int>(std::lround(w.circle_radius)) : w.quadrant_radius;
   w.color_radius = std::max(1.0, kColorRadiusMm / scale);
   w.weak_reach = kWeakReachMm / scale;
+  w.view_reach = std::max(1, static_cast<int>(std::ceil(kSideBlobRadiusMm / scale)));
   return w;
+}
+
+std::vector<uint8_t> peakMask(const std::vector<uint8_t>& valid, int width, int height, const ScoreWindows& w) {
+  cv::Mat seen(height, width, CV_8UC1, const_cast<uint8_t*>(valid.data()));
+  cv::Mat eroded;
+  const int d = 2 * w.view_reach + 1;
+  cv::erode(seen, eroded, cv::getStructuringElement(cv::MORPH_ELLIPSE, {d, d}), {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+  std::vector<uint8_t> mask(eroded.datastart, eroded.dataend);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (x < w.margin || y < w.margin || x >= width - w.margin || y >= height - w.margin)
+        mask[static_cast<size_t>(y) * width + x] = 0;
+  return mask;
 }
 
 RectifiedGrid checkedGrid(const CameraModel& camera, const FieldModel& field, const PipelineOptions& opt) {

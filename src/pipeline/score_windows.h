@@ -3,6 +3,9 @@
 // pixel is touched: the blob constants in millimetres and the window sizes
 // they become on a camera's grid. One definition, so tuning cannot drift
 // between the backends.
+#include <cstdint>
+#include <vector>
+
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "pipeline/pipeline_options.h"
@@ -12,6 +15,9 @@ namespace dv {
 
 // Largest blob radius (center blob, thesis §5.2.7.3).
 inline constexpr double kMaxBlobRadiusMm = 25;
+// Smallest pattern blob radius (a side blob): a peak counts where a blob of
+// this size would be seen whole (peakMask).
+inline constexpr double kSideBlobRadiusMm = 20;
 // Radius over which a blob's color is averaged: the side blob radius minus a
 // margin for blur and position error.
 inline constexpr double kColorRadiusMm = 13;
@@ -42,11 +48,21 @@ struct ScoreWindows {
   double circle_radius = 2;
   int inner_corner = 0;       // left out of each quadrant
   int margin = 1;             // cells at the edge without a full score window
+  int view_reach = 1;         // cells around a peak that must be seen (peakMask)
   int energy_window = 2;      // half size of the gradient energy window
   double color_radius = 1;
   double weak_reach = 1;      // kWeakReachMm in cells
 };
 ScoreWindows scoreWindows(double scale, BlobScoreKind kind);
+
+// Where a peak may count: grid cells whose disc of w.view_reach cells lies
+// in the camera's view (`valid`, grid sized, 1 = seen) and whose whole score
+// window lies in the grid. A side blob there is seen whole; the rest of its
+// window may read the repeated border samples (remap_table.h), whose
+// gradient across the image border is zero. Requiring the whole window
+// (w.margin, ~40 mm at 3.65 mm cells) to be seen lost the side view's
+// robots whose side blobs lay in the image within that of its border.
+std::vector<uint8_t> peakMask(const std::vector<uint8_t>& valid, int width, int height, const ScoreWindows& w);
 
 // The grid of a camera for these options, with the checks both backends
 // make: an image size in the calibration, an even size for Bayer input, a

@@ -44,6 +44,7 @@ struct OclEngine::Buffers {
   cl_mem input_dev = nullptr;   // discrete devices only
   cl_mem packed = nullptr, remap_index = nullptr, remap_frac = nullptr, mask = nullptr;
   cl_mem chroma = nullptr, gdot = nullptr, sat = nullptr, score = nullptr;
+  cl_mem forms = nullptr, form_plain = nullptr, form_plain_row = nullptr;
   cl_mem results = nullptr, results_host = nullptr, half = nullptr;
   cl_mem streak_coarse = nullptr, streak_score = nullptr, streak_orient = nullptr, streak_mask = nullptr,
          streak_shape = nullptr, streak_list = nullptr;
@@ -73,7 +74,7 @@ struct OclEngine::Buffers {
       if (k) clReleaseKernel(k);
     for (cl_mem m : {input_host, input_dev, packed, remap_index, remap_frac, mask, chroma, gdot, sat,
                      score, results, results_host, half, streak_coarse, streak_score, streak_orient,
-                     streak_mask, streak_shape, streak_list})
+                     streak_mask, streak_shape, streak_list, forms, form_plain, form_plain_row})
       if (m) clReleaseMemObject(m);
   }
 };
@@ -186,6 +187,16 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   b_->mask = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells, c.peak_mask.data(), "peak mask");
   b_->chroma = make(CL_MEM_READ_WRITE, cells * 8, nullptr, "chroma");  // float pairs
   b_->gdot = make(CL_MEM_READ_WRITE, cells * 4, nullptr, "gradient");
+  {
+    // One dummy element where the view is plain everywhere (buffers may not be empty).
+    const bool use = !c.gradient_forms.empty() && !c.circle_score;
+    std::vector<float> f = use ? c.gradient_forms : std::vector<float>(6, 0.f);
+    std::vector<uint8_t> p = use ? c.form_plain : std::vector<uint8_t>(1, 1);
+    std::vector<uint8_t> pr = use ? c.form_plain_row : std::vector<uint8_t>(1, 1);
+    b_->forms = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, f.size() * 4, f.data(), "gradient forms");
+    b_->form_plain = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, p.size(), p.data(), "gradient forms");
+    b_->form_plain_row = make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pr.size(), pr.data(), "gradient forms");
+  }
   const size_t sat_words = static_cast<size_t>(c.grid_width + 1) * (c.grid_height + 1);
   {
     std::vector<uint32_t> zeros(sat_words, 0);  // row 0 of the table stays 0
@@ -334,6 +345,12 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   argFloat(b_->gradient, 4, a);
   argFloat(b_->gradient, 5, na);
   argMem(b_->gradient, 6, b_->gdot);
+  const int use_forms = !c.gradient_forms.empty() && !c.circle_score ? 1 : 0;
+  argMem(b_->gradient, 7, b_->forms);
+  argMem(b_->gradient, 8, b_->form_plain_row);
+  argInt(b_->gradient, 9, c.form_block);
+  argInt(b_->gradient, 10, c.form_blocks_x);
+  argInt(b_->gradient, 11, use_forms);
 
   b_->sat_rows = ctx_->createKernel("sat_rows");
   b_->sat_rows_local = floorPow2(std::min<size_t>(256, kernelMax(b_->sat_rows)));
@@ -405,6 +422,11 @@ OclEngine::OclEngine(std::shared_ptr<OclContext> ctx, OclEngineConfig config)
   }
   argMem(b_->peaks, 22, b_->results);
   argInt(b_->peaks, 23, capacity_);
+  argMem(b_->peaks, 24, b_->forms);
+  argMem(b_->peaks, 25, b_->form_plain);
+  argInt(b_->peaks, 26, c.form_block);
+  argInt(b_->peaks, 27, c.form_blocks_x);
+  argInt(b_->peaks, 28, use_forms);
 
   b_->streak_coarse_k = ctx_->createKernel("streak_coarse");
   argMem(b_->streak_coarse_k, 0, b_->chroma);

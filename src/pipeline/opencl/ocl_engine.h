@@ -52,6 +52,12 @@ struct OclEngineConfig {
   int energy_window = 2;      // cells, half-size of the gradient energy window
   float energy_floor = 0.01f; // added to the energy before the score ratio
   int margin = 4;             // cells next to the border that never hold a peak
+  // Whitened gradient (pipeline/view_stretch.h, quadrant score only): 6
+  // floats per block of form_block cells (product form, energy form), 1 per
+  // block and per block row where it is plain. Empty: plain everywhere.
+  int form_block = 16, form_blocks_x = 0;
+  std::vector<float> gradient_forms;
+  std::vector<uint8_t> form_plain, form_plain_row;
   double color_radius = 1;    // cells, disc of the mean blob color
   float threshold = 0.1f;  // on the ratio; raw scores must exceed threshold * energy_floor
   int max_blobs = 2000;

@@ -12,6 +12,7 @@
 #include "pipeline/kernels.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/view_stretch.h"
 #include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 
@@ -68,13 +69,15 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     cfg.region_y_begin = table.y_begin, cfg.region_y_end = table.y_end;
     cfg.remap_index = std::move(table.index);
     cfg.remap_frac = std::move(table.frac);
-    // A peak counts only where its whole window is seen (as the CPU reference).
-    cv::Mat valid(grid_.height, grid_.width, CV_8UC1, table.valid.data());
-    cv::Mat eroded;
-    cv::erode(valid, eroded,
-              cv::getStructuringElement(cv::MORPH_RECT, {2 * cfg.margin + 1, 2 * cfg.margin + 1}), {-1, -1}, 1,
-              cv::BORDER_CONSTANT, 0);
-    cfg.peak_mask.assign(eroded.datastart, eroded.dataend);
+    cfg.peak_mask = peakMask(table.valid, grid_.width, grid_.height, w);  // as the CPU reference
+    const GradientForms forms = gradientForms(camera_, grid_, opt_.plane_height);
+    if (forms.any) {
+      cfg.form_block = kFormBlock;
+      cfg.form_blocks_x = forms.blocks_x;
+      cfg.gradient_forms = forms.coef;
+      cfg.form_plain = forms.plain;
+      cfg.form_plain_row = forms.plain_row;
+    }
     streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
     applyStreakWindows(streak_, streakPeakMask(table.valid.data(), grid_.width, grid_.height, streak_), cfg);
   }
