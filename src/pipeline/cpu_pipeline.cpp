@@ -14,6 +14,7 @@
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/kernels.h"
+#include "pipeline/band_peaks.h"
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
@@ -87,6 +88,11 @@ struct CpuPipeline::Impl {
   std::vector<GridPx> near;
   BlobSpacing reach;
   std::vector<std::vector<std::pair<int, int>>> spans;  // scratch of findPeaksNear, per part
+  // Peaks found inside the banded pass (band_peaks.h), one list set per band;
+  // the weak peaks around the blobs taken from them, and their ratios.
+  std::vector<BandPeaks> band_peaks;
+  std::vector<PeakCandidate> weak_raw;
+  std::vector<float> weak_ratio;
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -185,6 +191,12 @@ struct CpuPipeline::Impl {
     near.reserve(std::max(0, opt.max_blobs));
     spans.assign(parts, {});
     for (auto& v : spans) v.reserve(256);
+    if (banded) {
+      band_peaks.assign(bands.bands.size(), {});
+      for (BandPeaks& b : band_peaks) b.reserve(capacity, grid.width);
+      weak_raw.resize(capacity);
+      weak_ratio.resize(capacity);
+    }
   }
 
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
@@ -329,8 +341,73 @@ struct CpuPipeline::Impl {
     int done_;
   };
 
+  // Cells within this many rows of a peak are read by its ratio test
+  // (energy window plus the gradient's reach).
+  int energyReach() const { return ratioWindow() + static_cast<int>(std::floor(gradient_scale)) + 1; }
+  int ratioWindow() const {
+    return opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r)) : quadrant_r;
+  }
+  // Raw score a peak must exceed to be a candidate: ratio > t needs
+  // score > t * floor.
+  float rawThreshold() const { return static_cast<float>(opt.threshold) * kEnergyFloor; }
+  float lowThreshold() const {
+    const float threshold = static_cast<float>(opt.threshold);
+    return weakCapacity() > 0 ? std::min(threshold, static_cast<float>(opt.weak_threshold)) : threshold;
+  }
+  // A candidate's score over the gradient energy of its window (the energy
+  // sum may stop once the ratio is known to be at most `low`).
+  float peakRatio(const PeakCandidate& c, float low) const {
+    const float energy = windowGradientEnergy(ca.data(), cb.data(), grid.width, gradient_scale, c.x, c.y,
+                                              ratioWindow(), c.score / low);
+    return c.score / (energy + kEnergyFloor);
+  }
+
+  // Peaks of a band's inner rows (band_peaks.h): row y - 1 once row y has
+  // its score. The ratio test runs at once where the energy window lies in
+  // the band's own rows, which are in the planes and rectified already.
+  class BandPeakRows final : public ScoreRowSink {
+   public:
+    BandPeakRows(Impl& m, const BandPlan::Band& band, BandPeaks& out)
+        : m_(m), band_(band), out_(out), low_(m.lowThreshold() * kEnergyFloor), raw_(m.rawThreshold()),
+          threshold_(static_cast<float>(m.opt.threshold)), reach_(m.energyReach()) {}
+    void rowDone(int y) override {
+      const int t = y - 1;
+      if (t <= band_.y_begin) return;  // the first row is left for after the pass
+      BandPeaks::List& l = out_.inner;
+      const int from = out_.scanRow(l, m_.score.data(), m_.peak_mask.data(), m_.grid.width, m_.grid.height,
+                                    m_.margin, low_, t);
+      if (t - reach_ < band_.y_begin || t + reach_ >= band_.y_end) return;
+      for (int i = from; i < l.n; ++i)
+        if (l.peaks[i].score > raw_) l.ratio[i] = m_.peakRatio(l.peaks[i], threshold_);
+    }
+
+   private:
+    Impl& m_;
+    const BandPlan::Band& band_;
+    BandPeaks& out_;
+    float low_, raw_, threshold_;
+    int reach_;
+  };
+
+  // After the banded pass: band c's first and last rows and the ratios its
+  // pass could not compute.
+  void finishBandPeaks(int c) {
+    const BandPlan::Band& band = bands.bands[c];
+    BandPeaks& bp = band_peaks[c];
+    const float low = lowThreshold() * kEnergyFloor, raw = rawThreshold();
+    const float threshold = static_cast<float>(opt.threshold);
+    bp.scanRow(bp.first, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_begin);
+    if (band.y_end - 1 > band.y_begin)
+      bp.scanRow(bp.last, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_end - 1);
+    for (BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+      for (int i = 0; i < l->n; ++i)
+        if (l->ratio[i] == BandPeaks::kRatioPending && l->peaks[i].score > raw)
+          l->ratio[i] = peakRatio(l->peaks[i], threshold);
+  }
+
   // Bayer 2x2 subsampling, rectification and the quadrant score band by band
-  // (band_plan.h): bit for bit the whole-plane stages.
+  // (band_plan.h): bit for bit the whole-plane stages. Peaks of the score
+  // are looked for as it is made (band_peaks.h).
   void bandedScore(const cv::Mat& raw, float gain) {
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(static_cast<int>(bands.bands.size()), [&](int first, int last) {
@@ -349,8 +426,10 @@ struct CpuPipeline::Impl {
                        band.j_begin, band.j_end);
         band_bayer_ms[c] = msSince(t0);
         BandRows rows(*this, band, box, gain, halo.data(), halo.data() + static_cast<size_t>(bands.haloRows()) * gw);
+        band_peaks[c].clear();
+        BandPeakRows peaks(*this, band, band_peaks[c]);
         quadrantMinScoreFromRows(rows, gw, gh, gradient_scale, quadrant_r, inner_q, score.data(), band.y_begin,
-                                 band.y_end, ring);
+                                 band.y_end, ring, &peaks);
         rows.makeUpTo(band.y_end);  // own rows the score did not need (next to the plane's edges)
       }
     });
@@ -460,14 +539,18 @@ struct CpuPipeline::Impl {
       return kept;
     };
     const auto by_score = [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; };
+    // `merged`, the `cap` strongest first.
+    auto strongestFirst = [&](size_t cap) {
+      const size_t keep = std::min(merged.size(), cap);
+      std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(), by_score);
+      return keep;
+    };
     // The candidates of all parts, the `cap` strongest first.
     auto gather = [&](size_t cap) {
       merged.clear();
       for (size_t p = 0; p < candidates.size(); ++p)
         merged.insert(merged.end(), candidates[p].begin(), candidates[p].begin() + candidate_counts[p]);
-      const size_t keep = std::min(merged.size(), cap);
-      std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(), by_score);
-      return keep;
+      return strongestFirst(cap);
     };
     // One blob per object: a weaker peak within kMinBlobDistanceMm of a
     // stronger one is a second maximum of the same blob. Real blobs are at
@@ -492,15 +575,56 @@ struct CpuPipeline::Impl {
       }
     };
 
-    forParts(gh, [&](int p, int b, int e) {
-      auto& list = candidates[p];
-      // Raw score > threshold * floor is necessary for ratio > threshold.
-      const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin, threshold * kEnergyFloor,
-                                 list.data(), 0, static_cast<int>(list.size()), b, e);
-      candidate_counts[p] = ratioTest(list.data(), n, threshold, std::numeric_limits<float>::infinity());
-    });
+    // Banded frames: the peaks the pass found, finished on the pool together
+    // with the fast-ball score (which needs only the coarse rows the pass
+    // made). Their lists in band order are the scan's in row order.
+    const size_t capacity = candidates[0].size();
+    bool from_bands = banded;
+    if (banded) {
+      const int nb = static_cast<int>(bands.bands.size());
+      const int lh = streak.lattice_height, ns = std::min(lh, nb);
+      pool.parallelFor(nb + ns, [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          if (i < nb) {
+            finishBandPeaks(i);
+          } else {
+            const int s = i - nb;
+            streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(),
+                            static_cast<int>(static_cast<long>(lh) * s / ns),
+                            static_cast<int>(static_cast<long>(lh) * (s + 1) / ns));
+          }
+        }
+      });
+      // The scan keeps at most `capacity` candidates per part, before the
+      // ratio test; past that (or a band list full), scan the plane as
+      // before, which is exact in every case.
+      const float raw = rawThreshold();
+      size_t strong = 0;
+      merged.clear();
+      for (const BandPeaks& bp : band_peaks) {
+        from_bands = from_bands && !bp.full;
+        for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+          for (int i = 0; i < l->n; ++i) {
+            if (!(l->peaks[i].score > raw)) continue;
+            ++strong;
+            if (l->ratio[i] > threshold) merged.push_back({l->peaks[i].x, l->peaks[i].y, l->ratio[i]});
+          }
+      }
+      from_bands = from_bands && strong <= capacity;
+    }
+    if (!from_bands) {
+      forParts(gh, [&](int p, int b, int e) {
+        auto& list = candidates[p];
+        // Raw score > threshold * floor is necessary for ratio > threshold.
+        const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin, threshold * kEnergyFloor,
+                                   list.data(), 0, static_cast<int>(list.size()), b, e);
+        candidate_counts[p] = ratioTest(list.data(), n, threshold, std::numeric_limits<float>::infinity());
+      });
+    }
     spacing.clear();
-    select(gather(std::max(0, opt.max_blobs)), out.blobs, std::numeric_limits<size_t>::max());
+    const size_t max_blobs = std::max(0, opt.max_blobs);
+    select(from_bands ? strongestFirst(max_blobs) : gather(max_blobs), out.blobs,
+           std::numeric_limits<size_t>::max());
 
     // Weak peaks only around the blobs (hysteresis): where a side blob of a
     // robot whose center blob was found may lie.
@@ -520,18 +644,46 @@ struct CpuPipeline::Impl {
                                     static_cast<int>(list.size()), b, e);
         candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
       };
-      std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
-      if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
-      else forParts(gh, weakRows);
+      // From the bands' lists: their peaks near a blob in row order, what
+      // findPeaksNear finds (unless more than a part's capacity).
+      bool weak_from_bands = from_bands;
+      int n = 0;
+      if (weak_from_bands) {
+        const float raw_low = low * kEnergyFloor;
+        for (const BandPeaks& bp : band_peaks)
+          for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+            for (int i = 0; i < l->n && weak_from_bands; ++i) {
+              const PeakCandidate& c = l->peaks[i];
+              if (!(c.score > raw_low) || !reach.nearKept(c.x, c.y)) continue;
+              if (static_cast<size_t>(n) == capacity) weak_from_bands = false;
+              else weak_raw[n++] = c;
+            }
+      }
+      if (weak_from_bands) {
+        auto ratios = [&](int b, int e) {
+          for (int i = b; i < e; ++i) weak_ratio[i] = peakRatio(weak_raw[i], low);
+        };
+        if (near.size() <= kWeakScanOnPoolAbove) ratios(0, n);
+        else pool.parallelFor(n, ratios);
+        merged.clear();
+        for (int i = 0; i < n; ++i)
+          if (weak_ratio[i] > low && weak_ratio[i] <= threshold)
+            merged.push_back({weak_raw[i].x, weak_raw[i].y, weak_ratio[i]});
+        strongestFirst(std::numeric_limits<size_t>::max());
+      } else {
+        std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
+        if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
+        else forParts(gh, weakRows);
+        gather(std::numeric_limits<size_t>::max());
+      }
       // Up to max_weak_blobs weak peaks, strongest first (second maxima of
       // blobs do not count).
-      select(gather(std::numeric_limits<size_t>::max()), out.weak,
-             static_cast<size_t>(weakCapacity()));
+      select(merged.size(), out.weak, static_cast<size_t>(weakCapacity()));
     }
     times.peaks_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
-    findStreaks(out);
+    findStreaks(out, /*scored=*/banded);
     times.streak_ms = msSince(t0);
     times.total_ms = msSince(t_start);
     has_frame = true;
@@ -540,12 +692,15 @@ struct CpuPipeline::Impl {
 
   // Fast balls (streak_score.h): candidates the blob score missed, appended
   // after the blobs, strongest first. The coarse rows were made with the
-  // rectification.
-  void findStreaks(BlobList& out) {
+  // rectification; `scored`: the lattice score too (the banded path makes
+  // it on the pool beside the peaks).
+  void findStreaks(BlobList& out, bool scored) {
     const int lh = streak.lattice_height;
-    pool.parallelFor(lh, [&](int b, int e) {
-      streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
-    });
+    if (!scored) {
+      pool.parallelFor(lh, [&](int b, int e) {
+        streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
+      });
+    }
     forParts(lh, [&](int p, int b, int e) {
       streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
                                             streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
