@@ -202,10 +202,15 @@ struct CpuPipeline::Impl {
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
 
   // Splits rows [0, n) into one contiguous band per pool part and tells the
-  // body its part index.
+  // body its part index (`here`: all parts in turn on this thread).
   template <class F>
-  void forParts(int n, F&& body) {
+  void forParts(int n, F&& body, bool here = false) {
     const int parts = pool.size();
+    if (here) {
+      for (int p = 0; p < parts; ++p)
+        body(p, static_cast<int>(static_cast<long>(n) * p / parts), static_cast<int>(static_cast<long>(n) * (p + 1) / parts));
+      return;
+    }
     pool.parallelFor(parts, [&](int pb, int pe) {
       for (int p = pb; p < pe; ++p) {
         const int b = static_cast<int>(static_cast<long>(n) * p / parts);
@@ -701,10 +706,14 @@ struct CpuPipeline::Impl {
         streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
       });
     }
-    forParts(lh, [&](int p, int b, int e) {
+    auto peaks = [&](int p, int b, int e) {
       streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
                                             streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
-    });
+    };
+    // The lattice is small: on this thread when the pool would only be woken
+    // for it (the same parts, so the same candidates).
+    if (scored) forParts(lh, peaks, /*here=*/true);
+    else forParts(lh, peaks);
     streak_merged.clear();
     for (size_t p = 0; p < streak_candidates.size(); ++p)
       streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
