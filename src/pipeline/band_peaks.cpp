@@ -6,6 +6,7 @@ void BandPeaks::reserve(int capacity, int width) {
   inner.peaks.resize(capacity), inner.ratio.resize(capacity);
   // At most every other cell of a row is a 4-way maximum.
   for (List* l : {&first, &last}) l->peaks.resize(width / 2 + 1), l->ratio.resize(width / 2 + 1);
+  blobs.resize(capacity + 2 * (width / 2 + 1));
   clear();
 }
 

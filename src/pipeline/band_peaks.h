@@ -8,6 +8,7 @@
 // the blobs come out the same. Storage is reserved once per camera.
 #include <vector>
 
+#include "pipeline/blob.h"
 #include "pipeline/peak_select.h"
 
 namespace dv {
@@ -24,10 +25,15 @@ struct BandPeaks {
   // A list ran out of room, so peaks may be missing: the caller must scan
   // the score plane instead.
   bool full = false;
+  // The blobs of the candidates that passed the ratio test, in list order
+  // (position, ratio, color): made on the pool, so the serial selection
+  // after it only checks spacing and saturation.
+  std::vector<Blob> blobs;
+  int blob_n = 0;
 
   // capacity: peaks of the inner rows; width: the grid's (a row holds fewer).
   void reserve(int capacity, int width);
-  void clear() { first.n = inner.n = last.n = 0, full = false; }
+  void clear() { first.n = inner.n = last.n = blob_n = 0, full = false; }
   // Appends the peaks of row y (findPeakRows' test) to `list`, ratios
   // pending; returns the index of the first one added.
   int scanRow(List& list, const float* score, const uint8_t* mask, int width, int height, int margin,

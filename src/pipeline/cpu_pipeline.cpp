@@ -91,6 +91,8 @@ struct CpuPipeline::Impl {
   // Peaks found inside the banded pass (band_peaks.h), one list set per band;
   // the weak peaks around the blobs taken from them, and their ratios.
   std::vector<BandPeaks> band_peaks;
+  std::vector<Blob> merged_blobs;  // per entry of `merged`, from the bands
+  std::vector<int> rank;           // `merged` strongest first, as indices
   std::vector<PeakCandidate> weak_raw;
   std::vector<float> weak_ratio;
   float luma_mean = 100;
@@ -195,6 +197,8 @@ struct CpuPipeline::Impl {
       band_peaks.assign(bands.bands.size(), {});
       for (BandPeaks& b : band_peaks) b.reserve(capacity, grid.width);
       weak_raw.resize(capacity);
+      merged_blobs.reserve(static_cast<size_t>(capacity) * bands.bands.size());
+      rank.reserve(static_cast<size_t>(capacity) * bands.bands.size());
       weak_ratio.resize(capacity);
     }
   }
@@ -405,9 +409,18 @@ struct CpuPipeline::Impl {
     if (band.y_end - 1 > band.y_begin)
       bp.scanRow(bp.last, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_end - 1);
     for (BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
-      for (int i = 0; i < l->n; ++i)
-        if (l->ratio[i] == BandPeaks::kRatioPending && l->peaks[i].score > raw)
-          l->ratio[i] = peakRatio(l->peaks[i], threshold);
+      for (int i = 0; i < l->n; ++i) {
+        const PeakCandidate& c = l->peaks[i];
+        if (!(c.score > raw)) continue;
+        if (l->ratio[i] == BandPeaks::kRatioPending) l->ratio[i] = peakRatio(c, threshold);
+        if (!(l->ratio[i] > threshold)) continue;
+        Blob& blob = bp.blobs[bp.blob_n++];
+        blob = Blob{};
+        blob.grid = interpolatePeak(score.data(), grid.width, c.x, c.y);
+        blob.position = grid.toField(blob.grid);
+        blob.score = l->ratio[i];
+        meanColor(blob.grid, blob.rgb);
+      }
   }
 
   // Bayer 2x2 subsampling, rectification and the quadrant score band by band
@@ -569,12 +582,7 @@ struct CpuPipeline::Impl {
         blob.position = grid.toField(blob.grid);
         blob.score = c.score;
         meanColor(blob.grid, blob.rgb);
-        // Every blob the league uses is strongly colored; a near-neutral mean
-        // color is a white line crossing or a gray feature, whose chroma edges
-        // came from the carpet around it.
-        const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-        const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-        if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
+        if (!saturated(blob)) continue;
         list.push_back(blob);
         spacing.keep(blob.grid.x, blob.grid.y);
       }
@@ -606,8 +614,10 @@ struct CpuPipeline::Impl {
       const float raw = rawThreshold();
       size_t strong = 0;
       merged.clear();
+      merged_blobs.clear();
       for (const BandPeaks& bp : band_peaks) {
         from_bands = from_bands && !bp.full;
+        merged_blobs.insert(merged_blobs.end(), bp.blobs.begin(), bp.blobs.begin() + bp.blob_n);
         for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
           for (int i = 0; i < l->n; ++i) {
             if (!(l->peaks[i].score > raw)) continue;
@@ -628,8 +638,23 @@ struct CpuPipeline::Impl {
     }
     spacing.clear();
     const size_t max_blobs = std::max(0, opt.max_blobs);
-    select(from_bands ? strongestFirst(max_blobs) : gather(max_blobs), out.blobs,
-           std::numeric_limits<size_t>::max());
+    if (from_bands) {
+      // The order partial_sort gives `merged` (it compares scores only), on
+      // indices into it and its blobs.
+      rank.resize(merged.size());
+      for (size_t i = 0; i < rank.size(); ++i) rank[i] = static_cast<int>(i);
+      const size_t keep = std::min(rank.size(), max_blobs);
+      std::partial_sort(rank.begin(), rank.begin() + keep, rank.end(),
+                        [&](int a, int b) { return merged[a].score > merged[b].score; });
+      for (size_t i = 0; i < keep; ++i) {
+        const Blob& blob = merged_blobs[rank[i]];
+        if (spacing.nearKept(merged[rank[i]].x, merged[rank[i]].y) || !saturated(blob)) continue;
+        out.blobs.push_back(blob);
+        spacing.keep(blob.grid.x, blob.grid.y);
+      }
+    } else {
+      select(gather(max_blobs), out.blobs, std::numeric_limits<size_t>::max());
+    }
 
     // Weak peaks only around the blobs (hysteresis): where a side blob of a
     // robot whose center blob was found may lie.
@@ -733,6 +758,15 @@ struct CpuPipeline::Impl {
       meanColor(blob.grid, blob.rgb);
       if (acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
     }
+  }
+
+  // Every blob the league uses is strongly colored; a near-neutral mean
+  // color is a white line crossing or a gray feature, whose chroma edges
+  // came from the carpet around it.
+  static bool saturated(const Blob& blob) {
+    const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+    const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+    return !(hi - lo < kMinBlobSaturation * (hi + 1));
   }
 
   // Bilinear RGB of grid cell k from the last frame (co-sited samples).
