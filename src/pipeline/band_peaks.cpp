@@ -2,11 +2,12 @@
 
 namespace dv {
 
-void BandPeaks::reserve(int capacity, int width) {
+void BandPeaks::reserve(int capacity, int width, int blob_capacity) {
   inner.peaks.resize(capacity), inner.ratio.resize(capacity);
   // At most every other cell of a row is a 4-way maximum.
   for (List* l : {&first, &last}) l->peaks.resize(width / 2 + 1), l->ratio.resize(width / 2 + 1);
-  blobs.resize(capacity + 2 * (width / 2 + 1));
+  for (auto* v : {&blobs, &weak}) v->resize(blob_capacity);
+  for (auto* v : {&blob_cells, &weak_cells}) v->resize(blob_capacity);
   clear();
 }
 

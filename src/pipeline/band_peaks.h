@@ -26,14 +26,19 @@ struct BandPeaks {
   // the score plane instead.
   bool full = false;
   // The blobs of the candidates that passed the ratio test, in list order
-  // (position, ratio, color): made on the pool, so the serial selection
-  // after it only checks spacing and saturation.
-  std::vector<Blob> blobs;
-  int blob_n = 0;
+  // (position, ratio, color), with their cells and ratios: made on the
+  // pool, so the serial selection after it only checks spacing and
+  // saturation. The same for the weak peaks near the blobs kept
+  // (`weak_raw`: candidates before the ratio test). More blobs than there
+  // is room for also set `full`.
+  std::vector<Blob> blobs, weak;
+  std::vector<PeakCandidate> blob_cells, weak_cells;
+  int blob_n = 0, weak_n = 0, weak_raw = 0;
 
-  // capacity: peaks of the inner rows; width: the grid's (a row holds fewer).
-  void reserve(int capacity, int width);
-  void clear() { first.n = inner.n = last.n = blob_n = 0, full = false; }
+  // capacity: peaks of the inner rows; width: the grid's (a row holds
+  // fewer); blob_capacity: blobs of either kind.
+  void reserve(int capacity, int width, int blob_capacity);
+  void clear() { first.n = inner.n = last.n = blob_n = weak_n = weak_raw = 0, full = false; }
   // Appends the peaks of row y (findPeakRows' test) to `list`, ratios
   // pending; returns the index of the first one added.
   int scanRow(List& list, const float* score, const uint8_t* mask, int width, int height, int margin,

@@ -93,8 +93,6 @@ struct CpuPipeline::Impl {
   std::vector<BandPeaks> band_peaks;
   std::vector<Blob> merged_blobs;  // per entry of `merged`, from the bands
   std::vector<int> rank;           // `merged` strongest first, as indices
-  std::vector<PeakCandidate> weak_raw;
-  std::vector<float> weak_ratio;
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -194,12 +192,14 @@ struct CpuPipeline::Impl {
     spans.assign(parts, {});
     for (auto& v : spans) v.reserve(256);
     if (banded) {
+      // A band holding more blobs than a frame may keep is left to the
+      // plane scan.
+      const int blob_room = std::max(16, opt.max_blobs + weakCapacity());
       band_peaks.assign(bands.bands.size(), {});
-      for (BandPeaks& b : band_peaks) b.reserve(capacity, grid.width);
-      weak_raw.resize(capacity);
-      merged_blobs.reserve(static_cast<size_t>(capacity) * bands.bands.size());
-      rank.reserve(static_cast<size_t>(capacity) * bands.bands.size());
-      weak_ratio.resize(capacity);
+      for (BandPeaks& b : band_peaks) b.reserve(capacity, grid.width, blob_room);
+      merged_blobs.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
+      rank.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
+      merged.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
     }
   }
 
@@ -414,12 +414,43 @@ struct CpuPipeline::Impl {
         if (!(c.score > raw)) continue;
         if (l->ratio[i] == BandPeaks::kRatioPending) l->ratio[i] = peakRatio(c, threshold);
         if (!(l->ratio[i] > threshold)) continue;
-        Blob& blob = bp.blobs[bp.blob_n++];
-        blob = Blob{};
-        blob.grid = interpolatePeak(score.data(), grid.width, c.x, c.y);
-        blob.position = grid.toField(blob.grid);
-        blob.score = l->ratio[i];
-        meanColor(blob.grid, blob.rgb);
+        if (bp.blob_n == static_cast<int>(bp.blobs.size())) {
+          bp.full = true;
+          return;
+        }
+        bp.blob_cells[bp.blob_n] = {c.x, c.y, l->ratio[i]};
+        bp.blobs[bp.blob_n++] = peakBlob(c.x, c.y, l->ratio[i]);
+      }
+  }
+
+  // The blob of the peak at cell (x, y) with score `ratio`.
+  Blob peakBlob(int x, int y, float ratio) const {
+    Blob blob;
+    blob.grid = interpolatePeak(score.data(), grid.width, x, y);
+    blob.position = grid.toField(blob.grid);
+    blob.score = ratio;
+    meanColor(blob.grid, blob.rgb);
+    return blob;
+  }
+
+  // Weak peaks of band c (once the blobs are kept in `reach`): its
+  // candidates near a blob, in list order, their ratio test and blobs.
+  void bandWeakPeaks(int c, float low) {
+    BandPeaks& bp = band_peaks[c];
+    const float raw_low = low * kEnergyFloor, threshold = static_cast<float>(opt.threshold);
+    for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+      for (int i = 0; i < l->n; ++i) {
+        const PeakCandidate& p = l->peaks[i];
+        if (!(p.score > raw_low) || !reach.nearKept(p.x, p.y)) continue;
+        ++bp.weak_raw;
+        const float ratio = peakRatio(p, low);
+        if (!(ratio > low && ratio <= threshold)) continue;
+        if (bp.weak_n == static_cast<int>(bp.weak.size())) {
+          bp.full = true;
+          return;
+        }
+        bp.weak_cells[bp.weak_n] = {p.x, p.y, ratio};
+        bp.weak[bp.weak_n++] = peakBlob(p.x, p.y, ratio);
       }
   }
 
@@ -617,13 +648,10 @@ struct CpuPipeline::Impl {
       merged_blobs.clear();
       for (const BandPeaks& bp : band_peaks) {
         from_bands = from_bands && !bp.full;
+        merged.insert(merged.end(), bp.blob_cells.begin(), bp.blob_cells.begin() + bp.blob_n);
         merged_blobs.insert(merged_blobs.end(), bp.blobs.begin(), bp.blobs.begin() + bp.blob_n);
         for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
-          for (int i = 0; i < l->n; ++i) {
-            if (!(l->peaks[i].score > raw)) continue;
-            ++strong;
-            if (l->ratio[i] > threshold) merged.push_back({l->peaks[i].x, l->peaks[i].y, l->ratio[i]});
-          }
+          for (int i = 0; i < l->n; ++i) strong += l->peaks[i].score > raw;
       }
       from_bands = from_bands && strong <= capacity;
     }
@@ -638,20 +666,24 @@ struct CpuPipeline::Impl {
     }
     spacing.clear();
     const size_t max_blobs = std::max(0, opt.max_blobs);
-    if (from_bands) {
-      // The order partial_sort gives `merged` (it compares scores only), on
-      // indices into it and its blobs.
+    // select() for candidates whose blobs are made: `merged` and
+    // `merged_blobs` side by side, taken in the order partial_sort gives
+    // `merged` (it compares scores only), sorting indices.
+    auto selectMade = [&](size_t cap, std::vector<Blob>& list, size_t max_size) {
       rank.resize(merged.size());
       for (size_t i = 0; i < rank.size(); ++i) rank[i] = static_cast<int>(i);
-      const size_t keep = std::min(rank.size(), max_blobs);
+      const size_t keep = std::min(rank.size(), cap);
       std::partial_sort(rank.begin(), rank.begin() + keep, rank.end(),
                         [&](int a, int b) { return merged[a].score > merged[b].score; });
-      for (size_t i = 0; i < keep; ++i) {
+      for (size_t i = 0; i < keep && list.size() < max_size; ++i) {
         const Blob& blob = merged_blobs[rank[i]];
         if (spacing.nearKept(merged[rank[i]].x, merged[rank[i]].y) || !saturated(blob)) continue;
-        out.blobs.push_back(blob);
+        list.push_back(blob);
         spacing.keep(blob.grid.x, blob.grid.y);
       }
+    };
+    if (from_bands) {
+      selectMade(max_blobs, out.blobs, std::numeric_limits<size_t>::max());
     } else {
       select(gather(max_blobs), out.blobs, std::numeric_limits<size_t>::max());
     }
@@ -674,41 +706,37 @@ struct CpuPipeline::Impl {
                                     static_cast<int>(list.size()), b, e);
         candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
       };
-      // From the bands' lists: their peaks near a blob in row order, what
-      // findPeaksNear finds (unless more than a part's capacity).
+      // Up to max_weak_blobs weak peaks, strongest first (second maxima of
+      // blobs do not count).
+      const size_t all = std::numeric_limits<size_t>::max();
+      const size_t max_weak = static_cast<size_t>(weakCapacity());
+      // From the bands' lists, band by band on the pool: their peaks near a
+      // blob, in row order, are what findPeaksNear finds while there are no
+      // more than a part's capacity.
       bool weak_from_bands = from_bands;
-      int n = 0;
       if (weak_from_bands) {
-        const float raw_low = low * kEnergyFloor;
-        for (const BandPeaks& bp : band_peaks)
-          for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
-            for (int i = 0; i < l->n && weak_from_bands; ++i) {
-              const PeakCandidate& c = l->peaks[i];
-              if (!(c.score > raw_low) || !reach.nearKept(c.x, c.y)) continue;
-              if (static_cast<size_t>(n) == capacity) weak_from_bands = false;
-              else weak_raw[n++] = c;
-            }
+        pool.parallelFor(static_cast<int>(band_peaks.size()), [&](int b, int e) {
+          for (int c = b; c < e; ++c) bandWeakPeaks(c, low);
+        });
+        size_t raw_n = 0;
+        merged.clear();
+        merged_blobs.clear();
+        for (const BandPeaks& bp : band_peaks) {
+          raw_n += bp.weak_raw;
+          weak_from_bands = weak_from_bands && !bp.full;
+          merged.insert(merged.end(), bp.weak_cells.begin(), bp.weak_cells.begin() + bp.weak_n);
+          merged_blobs.insert(merged_blobs.end(), bp.weak.begin(), bp.weak.begin() + bp.weak_n);
+        }
+        weak_from_bands = weak_from_bands && raw_n <= capacity;
       }
       if (weak_from_bands) {
-        auto ratios = [&](int b, int e) {
-          for (int i = b; i < e; ++i) weak_ratio[i] = peakRatio(weak_raw[i], low);
-        };
-        if (near.size() <= kWeakScanOnPoolAbove) ratios(0, n);
-        else pool.parallelFor(n, ratios);
-        merged.clear();
-        for (int i = 0; i < n; ++i)
-          if (weak_ratio[i] > low && weak_ratio[i] <= threshold)
-            merged.push_back({weak_raw[i].x, weak_raw[i].y, weak_ratio[i]});
-        strongestFirst(std::numeric_limits<size_t>::max());
+        selectMade(all, out.weak, max_weak);
       } else {
         std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
         if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
         else forParts(gh, weakRows);
-        gather(std::numeric_limits<size_t>::max());
+        select(gather(all), out.weak, max_weak);
       }
-      // Up to max_weak_blobs weak peaks, strongest first (second maxima of
-      // blobs do not count).
-      select(merged.size(), out.weak, static_cast<size_t>(weakCapacity()));
     }
     times.peaks_ms = msSince(t0);
 
