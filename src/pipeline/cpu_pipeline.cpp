@@ -1,6 +1,7 @@
 #include "pipeline/cpu_pipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -505,28 +506,21 @@ struct CpuPipeline::Impl {
     return true;
   }
 
-  bool process(const cv::Mat& raw, BlobList& out) {
-    out.blobs.clear();
-    out.weak.clear();
-    out.plane_height = opt.plane_height;
-    if (!checkFrame(raw)) return false;
-    const bool bayer = raw.channels() == 1;
-    if (bayer != (opt.bayer != BayerPattern::None)) {
-      // A BGR frame for a Bayer-configured camera: the sample grid differs.
-      error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
-      return false;
-    }
-    error.clear();
-    const auto t_start = std::chrono::steady_clock::now();
-    auto t0 = t_start;
-
-    // Frame brightness for the exposure normalisation (sparse sample).
-    {
+  // Frame brightness for the exposure normalisation: a sparse sample (every
+  // 16th row, every 4th cell), its rows shared out to the pool (integer
+  // sums, the same in any order). The job also wakes the pool's workers
+  // for the passes that follow.
+  float frameLuma(const cv::Mat& raw, bool bayer) {
+    // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
+    const SampleRegion read{table.x_begin, table.x_end, table.y_begin, table.y_end};
+    const SampleRegion cells = full_bayer ? fullBayerCells(read) : read;
+    constexpr int kRowStep = 16;
+    std::atomic<uint64_t> total_sum{0}, total_n{0};
+    const int rows = (cells.y_end - cells.y_begin + kRowStep - 1) / kRowStep;
+    pool.parallelFor(rows, [&](int rb, int re) {
       uint64_t sum = 0, n = 0;
-      // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
-      const SampleRegion read{table.x_begin, table.x_end, table.y_begin, table.y_end};
-      const SampleRegion cells = full_bayer ? fullBayerCells(read) : read;
-      for (int y = cells.y_begin; y < cells.y_end; y += 16) {
+      for (int j = rb; j < re; ++j) {
+        const int y = cells.y_begin + j * kRowStep;
         if (bayer) {
           // R + B + mean of the two greens, per 2x2 cell.
           const auto s = bayerSites(opt.bayer);
@@ -546,8 +540,28 @@ struct CpuPipeline::Impl {
             sum += row[3 * x] + row[3 * x + 1] + row[3 * x + 2], n += 3;
         }
       }
-      luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
+      total_sum.fetch_add(sum, std::memory_order_relaxed);
+      total_n.fetch_add(n, std::memory_order_relaxed);
+    });
+    return static_cast<float>(total_sum.load()) / std::max<uint64_t>(1, total_n.load()) + 1.0f;
+  }
+
+  bool process(const cv::Mat& raw, BlobList& out) {
+    out.blobs.clear();
+    out.weak.clear();
+    out.plane_height = opt.plane_height;
+    if (!checkFrame(raw)) return false;
+    const bool bayer = raw.channels() == 1;
+    if (bayer != (opt.bayer != BayerPattern::None)) {
+      // A BGR frame for a Bayer-configured camera: the sample grid differs.
+      error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
+      return false;
     }
+    error.clear();
+    const auto t_start = std::chrono::steady_clock::now();
+    auto t0 = t_start;
+
+    luma_mean = frameLuma(raw, bayer);
     times.color_ms = msSince(t0);
 
     const float gain = 1.0f / (luma_mean * kPackedChromaScale);
