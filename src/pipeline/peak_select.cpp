@@ -54,17 +54,14 @@ __attribute__((target("avx2"))) int avx2Peaks(const float* row, const float* up,
                                               int count, int capacity) {
   const __m256 t = _mm256_set1_ps(threshold);
   for (; x + 8 <= x_end; x += 8) {
-    // No early exit on the threshold alone: on textured carpet whether 8
-    // cells pass it is a coin toss the branch predictor loses.
     const __m256 c = _mm256_loadu_ps(row + x);
     __m256 ok = _mm256_cmp_ps(c, t, _CMP_GT_OQ);
+    if (_mm256_movemask_ps(ok) == 0) continue;  // most of the plane
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(row + x - 1), _CMP_GT_OQ));
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(row + x + 1), _CMP_GE_OQ));
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(up + x), _CMP_GT_OQ));
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(dn + x), _CMP_GE_OQ));
-    unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(ok));
-    if (__builtin_expect(bits == 0, 1)) continue;
-    for (; bits; bits &= bits - 1) {
+    for (unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(ok)); bits; bits &= bits - 1) {
       const int xi = x + __builtin_ctz(bits);
       if (!m[xi]) continue;
       if (count >= capacity) return -1;
