@@ -406,6 +406,7 @@ struct CpuPipeline::Impl {
     BandPeaks& bp = band_peaks[c];
     const float low = lowThreshold() * kEnergyFloor, raw = rawThreshold();
     const float threshold = static_cast<float>(opt.threshold);
+    if (band.y_end == band.y_begin) return;  // an empty band (a grid of few rows)
     bp.scanRow(bp.first, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_begin);
     if (band.y_end - 1 > band.y_begin)
       bp.scanRow(bp.last, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_end - 1);
