@@ -1,6 +1,7 @@
 #include "pipeline/band_plan.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dv {
 
@@ -9,11 +10,25 @@ BandPlan BandPlan::build(const RemapTable& table, bool transposed, int count, in
   plan.reach = reach;
   const int h = table.height, w = table.width;
   count = std::clamp(count, 1, std::max(1, h));
+  // Band heights fall linearly from 3/2 to 1/2 of the mean: the pool hands
+  // bands out in order, so the last ones, which decide how long one thread
+  // waits for the other at the end of the pass, are the short ones.
+  std::vector<int> edges(count + 1, 0);
+  {
+    double at = 0;
+    const double mean = static_cast<double>(h) / count;
+    for (int c = 0; c < count; ++c) {
+      const double weight = count > 1 ? 1.5 - static_cast<double>(c) / (count - 1) : 1.0;
+      at += weight * mean;
+      edges[c + 1] = std::clamp(static_cast<int>(std::lround(at)), edges[c], h);
+    }
+    edges[count] = h;
+  }
   size_t cells = 0;
   for (int c = 0; c < count; ++c) {
     Band b;
-    b.y_begin = static_cast<int>(static_cast<long>(h) * c / count);
-    b.y_end = static_cast<int>(static_cast<long>(h) * (c + 1) / count);
+    b.y_begin = edges[c];
+    b.y_end = edges[c + 1];
     b.lo = std::max(0, b.y_begin - reach);
     b.hi = std::min(h, b.y_end + reach);
     b.index_offset = cells;

@@ -6,7 +6,8 @@
 // nor the chroma planes go out to memory and come back. Bands overlap by the
 // reach of the score window and the gradient: those rows are rectified by
 // both bands (into a private buffer by the one that does not own them), and
-// so are the samples under them. Built once per camera.
+// so are the samples under them. Heights fall from first to last band
+// (the last ones taken are short). Built once per camera.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -108,7 +108,7 @@ void quadrantMinScoreFromChroma(const float* ca, const float* cb, int width, int
 
 void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
                               float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch,
-                              const GradientForms* forms) {
+                              const GradientForms* forms, ScoreRowSink* sink) {
   const size_t stride = static_cast<size_t>(width) + 1;
   const float norm = quadrantNorm(r, q);
   const int m = r + 1;
@@ -134,9 +134,11 @@ void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, doubl
     boxRowPrefix(g_row(t - 1), g_row(t), width, prefix);
     addRow(ring(t - 1), prefix, static_cast<int>(stride), ring(t));
     const int y = t - r;  // all of rows y - r .. y + r are now in the ring
-    if (y >= first)
+    if (y >= first) {
       quadrantScoreRow(ring(y - r), ring(y - q), ring(y), ring(y + q), ring(y + r), width, r, q, norm,
                        score + static_cast<size_t>(y) * width);
+      if (sink) sink->rowDone(y);
+    }
   }
 }
 

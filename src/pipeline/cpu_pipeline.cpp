@@ -1,6 +1,7 @@
 #include "pipeline/cpu_pipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/kernels.h"
+#include "pipeline/band_peaks.h"
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
@@ -79,7 +81,7 @@ struct CpuPipeline::Impl {
   std::vector<float> ca, cb, score;
   std::vector<int32_t> gdot;
   std::vector<uint32_t> sat;
-  std::vector<uint8_t> peak_mask;  // 1 where the whole window is seen by the camera
+  std::vector<uint8_t> peak_mask;  // 1 where a side blob's disc is seen (score_windows.h, peakMask)
   std::vector<std::vector<PeakCandidate>> candidates;  // one per pool part
   std::vector<int> candidate_counts;
   std::vector<PeakCandidate> merged;
@@ -89,6 +91,11 @@ struct CpuPipeline::Impl {
   std::vector<GridPx> near;
   BlobSpacing reach;
   std::vector<std::vector<std::pair<int, int>>> spans;  // scratch of findPeaksNear, per part
+  // Peaks found inside the banded pass (band_peaks.h), one list set per band;
+  // the weak peaks around the blobs taken from them, and their ratios.
+  std::vector<BandPeaks> band_peaks;
+  std::vector<Blob> merged_blobs;  // per entry of `merged`, from the bands
+  std::vector<int> rank;           // `merged` strongest first, as indices
   float luma_mean = 100;
   bool has_frame = false;
 
@@ -182,15 +189,30 @@ struct CpuPipeline::Impl {
     near.reserve(std::max(0, opt.max_blobs));
     spans.assign(parts, {});
     for (auto& v : spans) v.reserve(256);
+    if (banded) {
+      // A band holding more blobs than a frame may keep is left to the
+      // plane scan.
+      const int blob_room = std::max(16, opt.max_blobs + weakCapacity());
+      band_peaks.assign(bands.bands.size(), {});
+      for (BandPeaks& b : band_peaks) b.reserve(capacity, grid.width, blob_room);
+      merged_blobs.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
+      rank.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
+      merged.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
+    }
   }
 
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
 
   // Splits rows [0, n) into one contiguous band per pool part and tells the
-  // body its part index.
+  // body its part index (`here`: all parts in turn on this thread).
   template <class F>
-  void forParts(int n, F&& body) {
+  void forParts(int n, F&& body, bool here = false) {
     const int parts = pool.size();
+    if (here) {
+      for (int p = 0; p < parts; ++p)
+        body(p, static_cast<int>(static_cast<long>(n) * p / parts), static_cast<int>(static_cast<long>(n) * (p + 1) / parts));
+      return;
+    }
     pool.parallelFor(parts, [&](int pb, int pe) {
       for (int p = pb; p < pe; ++p) {
         const int b = static_cast<int>(static_cast<long>(n) * p / parts);
@@ -326,8 +348,120 @@ struct CpuPipeline::Impl {
     int done_;
   };
 
+  // Cells within this many rows of a peak are read by its ratio test
+  // (energy window plus the gradient's reach).
+  int energyReach() const { return ratioWindow() + static_cast<int>(std::floor(gradient_scale)) + 1; }
+  int ratioWindow() const {
+    return opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r)) : quadrant_r;
+  }
+  // Raw score a peak must exceed to be a candidate: ratio > t needs
+  // score > t * floor.
+  float rawThreshold() const { return static_cast<float>(opt.threshold) * kEnergyFloor; }
+  float lowThreshold() const {
+    const float threshold = static_cast<float>(opt.threshold);
+    return weakCapacity() > 0 ? std::min(threshold, static_cast<float>(opt.weak_threshold)) : threshold;
+  }
+  // A candidate's score over the gradient energy of its window (the energy
+  // sum may stop once the ratio is known to be at most `low`).
+  float peakRatio(const PeakCandidate& c, float low) const {
+    return c.score / (windowEnergy(c.x, c.y, c.score / low) + kEnergyFloor);
+  }
+  // Gradient energy of the ratio window at (x, y), whitened where the view
+  // stretches blobs (view_stretch.h); the sum may stop once above `stop`.
+  float windowEnergy(int x, int y, float stop) const {
+    return forms.plainAt(x, y) ? windowGradientEnergy(ca.data(), cb.data(), grid.width, gradient_scale, x, y,
+                                                      ratioWindow(), stop)
+                               : windowGradientEnergyForm(ca.data(), cb.data(), grid.width, gradient_scale, x, y,
+                                                          ratioWindow(), forms.block(x, y) + 3, stop);
+  }
+
+  // Peaks of a band's inner rows (band_peaks.h): row y - 1 once row y has
+  // its score. The ratio test runs at once where the energy window lies in
+  // the band's own rows, which are in the planes and rectified already.
+  class BandPeakRows final : public ScoreRowSink {
+   public:
+    BandPeakRows(Impl& m, const BandPlan::Band& band, BandPeaks& out)
+        : m_(m), band_(band), out_(out), low_(m.lowThreshold() * kEnergyFloor), raw_(m.rawThreshold()),
+          threshold_(static_cast<float>(m.opt.threshold)), reach_(m.energyReach()) {}
+    void rowDone(int y) override {
+      const int t = y - 1;
+      if (t <= band_.y_begin) return;  // the first row is left for after the pass
+      BandPeaks::List& l = out_.inner;
+      const int from = out_.scanRow(l, m_.score.data(), m_.peak_mask.data(), m_.grid.width, m_.grid.height,
+                                    m_.margin, low_, t);
+      if (t - reach_ < band_.y_begin || t + reach_ >= band_.y_end) return;
+      for (int i = from; i < l.n; ++i)
+        if (l.peaks[i].score > raw_) l.ratio[i] = m_.peakRatio(l.peaks[i], threshold_);
+    }
+
+   private:
+    Impl& m_;
+    const BandPlan::Band& band_;
+    BandPeaks& out_;
+    float low_, raw_, threshold_;
+    int reach_;
+  };
+
+  // After the banded pass: band c's first and last rows and the ratios its
+  // pass could not compute.
+  void finishBandPeaks(int c) {
+    const BandPlan::Band& band = bands.bands[c];
+    BandPeaks& bp = band_peaks[c];
+    const float low = lowThreshold() * kEnergyFloor, raw = rawThreshold();
+    const float threshold = static_cast<float>(opt.threshold);
+    if (band.y_end == band.y_begin) return;  // an empty band (a grid of few rows)
+    bp.scanRow(bp.first, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_begin);
+    if (band.y_end - 1 > band.y_begin)
+      bp.scanRow(bp.last, score.data(), peak_mask.data(), grid.width, grid.height, margin, low, band.y_end - 1);
+    for (BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+      for (int i = 0; i < l->n; ++i) {
+        const PeakCandidate& c = l->peaks[i];
+        if (!(c.score > raw)) continue;
+        if (l->ratio[i] == BandPeaks::kRatioPending) l->ratio[i] = peakRatio(c, threshold);
+        if (!(l->ratio[i] > threshold)) continue;
+        if (bp.blob_n == static_cast<int>(bp.blobs.size())) {
+          bp.full = true;
+          return;
+        }
+        bp.blob_cells[bp.blob_n] = {c.x, c.y, l->ratio[i]};
+        bp.blobs[bp.blob_n++] = peakBlob(c.x, c.y, l->ratio[i]);
+      }
+  }
+
+  // The blob of the peak at cell (x, y) with score `ratio`.
+  Blob peakBlob(int x, int y, float ratio) const {
+    Blob blob;
+    blob.grid = interpolatePeak(score.data(), grid.width, x, y);
+    blob.position = grid.toField(blob.grid);
+    blob.score = ratio;
+    meanColor(blob.grid, blob.rgb);
+    return blob;
+  }
+
+  // Weak peaks of band c (once the blobs are kept in `reach`): its
+  // candidates near a blob, in list order, their ratio test and blobs.
+  void bandWeakPeaks(int c, float low) {
+    BandPeaks& bp = band_peaks[c];
+    const float raw_low = low * kEnergyFloor, threshold = static_cast<float>(opt.threshold);
+    for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+      for (int i = 0; i < l->n; ++i) {
+        const PeakCandidate& p = l->peaks[i];
+        if (!(p.score > raw_low) || !reach.nearKept(p.x, p.y)) continue;
+        ++bp.weak_raw;
+        const float ratio = peakRatio(p, low);
+        if (!(ratio > low && ratio <= threshold)) continue;
+        if (bp.weak_n == static_cast<int>(bp.weak.size())) {
+          bp.full = true;
+          return;
+        }
+        bp.weak_cells[bp.weak_n] = {p.x, p.y, ratio};
+        bp.weak[bp.weak_n++] = peakBlob(p.x, p.y, ratio);
+      }
+  }
+
   // Bayer 2x2 subsampling, rectification and the quadrant score band by band
-  // (band_plan.h): bit for bit the whole-plane stages.
+  // (band_plan.h): bit for bit the whole-plane stages. Peaks of the score
+  // are looked for as it is made (band_peaks.h).
   void bandedScore(const cv::Mat& raw, float gain) {
     const int gw = grid.width, gh = grid.height;
     pool.parallelFor(static_cast<int>(bands.bands.size()), [&](int first, int last) {
@@ -346,8 +480,10 @@ struct CpuPipeline::Impl {
                        band.j_begin, band.j_end);
         band_bayer_ms[c] = msSince(t0);
         BandRows rows(*this, band, box, gain, halo.data(), halo.data() + static_cast<size_t>(bands.haloRows()) * gw);
+        band_peaks[c].clear();
+        BandPeakRows peaks(*this, band, band_peaks[c]);
         quadrantMinScoreFromRows(rows, gw, gh, gradient_scale, quadrant_r, inner_q, score.data(), band.y_begin,
-                                 band.y_end, ring, &forms);
+                                 band.y_end, ring, &forms, &peaks);
         rows.makeUpTo(band.y_end);  // own rows the score did not need (next to the plane's edges)
       }
     });
@@ -374,28 +510,21 @@ struct CpuPipeline::Impl {
     return true;
   }
 
-  bool process(const cv::Mat& raw, BlobList& out) {
-    out.blobs.clear();
-    out.weak.clear();
-    out.plane_height = opt.plane_height;
-    if (!checkFrame(raw)) return false;
-    const bool bayer = raw.channels() == 1;
-    if (bayer != (opt.bayer != BayerPattern::None)) {
-      // A BGR frame for a Bayer-configured camera: the sample grid differs.
-      error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
-      return false;
-    }
-    error.clear();
-    const auto t_start = std::chrono::steady_clock::now();
-    auto t0 = t_start;
-
-    // Frame brightness for the exposure normalisation (sparse sample).
-    {
+  // Frame brightness for the exposure normalisation: a sparse sample (every
+  // 16th row, every 4th cell), its rows shared out to the pool (integer
+  // sums, the same in any order). The job also wakes the pool's workers
+  // for the passes that follow.
+  float frameLuma(const cv::Mat& raw, bool bayer) {
+    // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
+    const SampleRegion read{table.x_begin, table.x_end, table.y_begin, table.y_end};
+    const SampleRegion cells = full_bayer ? fullBayerCells(read) : read;
+    constexpr int kRowStep = 16;
+    std::atomic<uint64_t> total_sum{0}, total_n{0};
+    const int rows = (cells.y_end - cells.y_begin + kRowStep - 1) / kRowStep;
+    pool.parallelFor(rows, [&](int rb, int re) {
       uint64_t sum = 0, n = 0;
-      // Bayer: over the 2x2 cells under the samples read (fullBayerCells).
-      const SampleRegion read{table.x_begin, table.x_end, table.y_begin, table.y_end};
-      const SampleRegion cells = full_bayer ? fullBayerCells(read) : read;
-      for (int y = cells.y_begin; y < cells.y_end; y += 16) {
+      for (int j = rb; j < re; ++j) {
+        const int y = cells.y_begin + j * kRowStep;
         if (bayer) {
           // R + B + mean of the two greens, per 2x2 cell.
           const auto s = bayerSites(opt.bayer);
@@ -415,8 +544,28 @@ struct CpuPipeline::Impl {
             sum += row[3 * x] + row[3 * x + 1] + row[3 * x + 2], n += 3;
         }
       }
-      luma_mean = static_cast<float>(sum) / std::max<uint64_t>(1, n) + 1.0f;
+      total_sum.fetch_add(sum, std::memory_order_relaxed);
+      total_n.fetch_add(n, std::memory_order_relaxed);
+    });
+    return static_cast<float>(total_sum.load()) / std::max<uint64_t>(1, total_n.load()) + 1.0f;
+  }
+
+  bool process(const cv::Mat& raw, BlobList& out) {
+    out.blobs.clear();
+    out.weak.clear();
+    out.plane_height = opt.plane_height;
+    if (!checkFrame(raw)) return false;
+    const bool bayer = raw.channels() == 1;
+    if (bayer != (opt.bayer != BayerPattern::None)) {
+      // A BGR frame for a Bayer-configured camera: the sample grid differs.
+      error = bayer ? "Bayer frame for a BGR camera" : "BGR frame for a camera configured as Bayer";
+      return false;
     }
+    error.clear();
+    const auto t_start = std::chrono::steady_clock::now();
+    auto t0 = t_start;
+
+    luma_mean = frameLuma(raw, bayer);
     times.color_ms = msSince(t0);
 
     const float gain = 1.0f / (luma_mean * kPackedChromaScale);
@@ -440,8 +589,6 @@ struct CpuPipeline::Impl {
     t0 = std::chrono::steady_clock::now();
     const int gw = grid.width, gh = grid.height;
     const float threshold = static_cast<float>(opt.threshold);
-    const int window = opt.score == BlobScoreKind::CircleMin ? static_cast<int>(std::lround(circle_r))
-                                                             : quadrant_r;
     // Keeps the candidates of list[0, n) whose ratio exceeds `low` and (for
     // weak peaks) does not exceed `high`, with the ratio as their score.
     auto ratioTest = [&](PeakCandidate* list, int n, float low, float high) {
@@ -449,26 +596,25 @@ struct CpuPipeline::Impl {
       for (int i = 0; i < n; ++i) {
         // Energy above score / low fails the ratio test (the floor only
         // lowers the ratio further), so its sum may stop there.
-        const int x = list[i].x, y = list[i].y;
-        const float energy =
-            forms.plainAt(x, y)
-                ? windowGradientEnergy(ca.data(), cb.data(), gw, gradient_scale, x, y, window, list[i].score / low)
-                : windowGradientEnergyForm(ca.data(), cb.data(), gw, gradient_scale, x, y, window,
-                                           forms.block(x, y) + 3, list[i].score / low);
+        const float energy = windowEnergy(list[i].x, list[i].y, list[i].score / low);
         const float ratio = list[i].score / (energy + kEnergyFloor);
         if (ratio > low && ratio <= high) list[kept++] = {list[i].x, list[i].y, ratio};
       }
       return kept;
     };
     const auto by_score = [](const PeakCandidate& a, const PeakCandidate& b) { return a.score > b.score; };
+    // `merged`, the `cap` strongest first.
+    auto strongestFirst = [&](size_t cap) {
+      const size_t keep = std::min(merged.size(), cap);
+      std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(), by_score);
+      return keep;
+    };
     // The candidates of all parts, the `cap` strongest first.
     auto gather = [&](size_t cap) {
       merged.clear();
       for (size_t p = 0; p < candidates.size(); ++p)
         merged.insert(merged.end(), candidates[p].begin(), candidates[p].begin() + candidate_counts[p]);
-      const size_t keep = std::min(merged.size(), cap);
-      std::partial_sort(merged.begin(), merged.begin() + keep, merged.end(), by_score);
-      return keep;
+      return strongestFirst(cap);
     };
     // One blob per object: a weaker peak within kMinBlobDistanceMm of a
     // stronger one is a second maximum of the same blob. Real blobs are at
@@ -482,26 +628,80 @@ struct CpuPipeline::Impl {
         blob.position = grid.toField(blob.grid);
         blob.score = c.score;
         meanColor(blob.grid, blob.rgb);
-        // Every blob the league uses is strongly colored; a near-neutral mean
-        // color is a white line crossing or a gray feature, whose chroma edges
-        // came from the carpet around it.
-        const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-        const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-        if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
+        if (!saturated(blob)) continue;
         list.push_back(blob);
         spacing.keep(blob.grid.x, blob.grid.y);
       }
     };
 
-    forParts(gh, [&](int p, int b, int e) {
-      auto& list = candidates[p];
-      // Raw score > threshold * floor is necessary for ratio > threshold.
-      const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin, threshold * kEnergyFloor,
-                                 list.data(), 0, static_cast<int>(list.size()), b, e);
-      candidate_counts[p] = ratioTest(list.data(), n, threshold, std::numeric_limits<float>::infinity());
-    });
+    // Banded frames: the peaks the pass found, finished on the pool together
+    // with the fast-ball score (which needs only the coarse rows the pass
+    // made). Their lists in band order are the scan's in row order.
+    const size_t capacity = candidates[0].size();
+    bool from_bands = banded;
+    if (banded) {
+      const int nb = static_cast<int>(bands.bands.size());
+      const int lh = streak.lattice_height, ns = std::min(lh, nb);
+      pool.parallelFor(nb + ns, [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          if (i < nb) {
+            finishBandPeaks(i);
+          } else {
+            const int s = i - nb;
+            streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(),
+                            static_cast<int>(static_cast<long>(lh) * s / ns),
+                            static_cast<int>(static_cast<long>(lh) * (s + 1) / ns));
+          }
+        }
+      });
+      // The scan keeps at most `capacity` candidates per part, before the
+      // ratio test; past that (or a band list full), scan the plane as
+      // before, which is exact in every case.
+      const float raw = rawThreshold();
+      size_t strong = 0;
+      merged.clear();
+      merged_blobs.clear();
+      for (const BandPeaks& bp : band_peaks) {
+        from_bands = from_bands && !bp.full;
+        merged.insert(merged.end(), bp.blob_cells.begin(), bp.blob_cells.begin() + bp.blob_n);
+        merged_blobs.insert(merged_blobs.end(), bp.blobs.begin(), bp.blobs.begin() + bp.blob_n);
+        for (const BandPeaks::List* l : {&bp.first, &bp.inner, &bp.last})
+          for (int i = 0; i < l->n; ++i) strong += l->peaks[i].score > raw;
+      }
+      from_bands = from_bands && strong <= capacity;
+    }
+    if (!from_bands) {
+      forParts(gh, [&](int p, int b, int e) {
+        auto& list = candidates[p];
+        // Raw score > threshold * floor is necessary for ratio > threshold.
+        const int n = findPeakRows(score.data(), peak_mask.data(), gw, gh, margin, threshold * kEnergyFloor,
+                                   list.data(), 0, static_cast<int>(list.size()), b, e);
+        candidate_counts[p] = ratioTest(list.data(), n, threshold, std::numeric_limits<float>::infinity());
+      });
+    }
     spacing.clear();
-    select(gather(std::max(0, opt.max_blobs)), out.blobs, std::numeric_limits<size_t>::max());
+    const size_t max_blobs = std::max(0, opt.max_blobs);
+    // select() for candidates whose blobs are made: `merged` and
+    // `merged_blobs` side by side, taken in the order partial_sort gives
+    // `merged` (it compares scores only), sorting indices.
+    auto selectMade = [&](size_t cap, std::vector<Blob>& list, size_t max_size) {
+      rank.resize(merged.size());
+      for (size_t i = 0; i < rank.size(); ++i) rank[i] = static_cast<int>(i);
+      const size_t keep = std::min(rank.size(), cap);
+      std::partial_sort(rank.begin(), rank.begin() + keep, rank.end(),
+                        [&](int a, int b) { return merged[a].score > merged[b].score; });
+      for (size_t i = 0; i < keep && list.size() < max_size; ++i) {
+        const Blob& blob = merged_blobs[rank[i]];
+        if (spacing.nearKept(merged[rank[i]].x, merged[rank[i]].y) || !saturated(blob)) continue;
+        list.push_back(blob);
+        spacing.keep(blob.grid.x, blob.grid.y);
+      }
+    };
+    if (from_bands) {
+      selectMade(max_blobs, out.blobs, std::numeric_limits<size_t>::max());
+    } else {
+      select(gather(max_blobs), out.blobs, std::numeric_limits<size_t>::max());
+    }
 
     // Weak peaks only around the blobs (hysteresis): where a side blob of a
     // robot whose center blob was found may lie.
@@ -521,18 +721,42 @@ struct CpuPipeline::Impl {
                                     static_cast<int>(list.size()), b, e);
         candidate_counts[p] = ratioTest(list.data(), n, low, threshold);
       };
-      std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
-      if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
-      else forParts(gh, weakRows);
       // Up to max_weak_blobs weak peaks, strongest first (second maxima of
       // blobs do not count).
-      select(gather(std::numeric_limits<size_t>::max()), out.weak,
-             static_cast<size_t>(weakCapacity()));
+      const size_t all = std::numeric_limits<size_t>::max();
+      const size_t max_weak = static_cast<size_t>(weakCapacity());
+      // From the bands' lists, band by band on the pool: their peaks near a
+      // blob, in row order, are what findPeaksNear finds while there are no
+      // more than a part's capacity.
+      bool weak_from_bands = from_bands;
+      if (weak_from_bands) {
+        pool.parallelFor(static_cast<int>(band_peaks.size()), [&](int b, int e) {
+          for (int c = b; c < e; ++c) bandWeakPeaks(c, low);
+        });
+        size_t raw_n = 0;
+        merged.clear();
+        merged_blobs.clear();
+        for (const BandPeaks& bp : band_peaks) {
+          raw_n += bp.weak_raw;
+          weak_from_bands = weak_from_bands && !bp.full;
+          merged.insert(merged.end(), bp.weak_cells.begin(), bp.weak_cells.begin() + bp.weak_n);
+          merged_blobs.insert(merged_blobs.end(), bp.weak.begin(), bp.weak.begin() + bp.weak_n);
+        }
+        weak_from_bands = weak_from_bands && raw_n <= capacity;
+      }
+      if (weak_from_bands) {
+        selectMade(all, out.weak, max_weak);
+      } else {
+        std::fill(candidate_counts.begin(), candidate_counts.end(), 0);
+        if (near.size() <= kWeakScanOnPoolAbove) weakRows(0, 0, gh);
+        else forParts(gh, weakRows);
+        select(gather(all), out.weak, max_weak);
+      }
     }
     times.peaks_ms = msSince(t0);
 
     t0 = std::chrono::steady_clock::now();
-    findStreaks(out);
+    findStreaks(out, /*scored=*/banded);
     times.streak_ms = msSince(t0);
     times.total_ms = msSince(t_start);
     has_frame = true;
@@ -541,16 +765,23 @@ struct CpuPipeline::Impl {
 
   // Fast balls (streak_score.h): candidates the blob score missed, appended
   // after the blobs, strongest first. The coarse rows were made with the
-  // rectification.
-  void findStreaks(BlobList& out) {
+  // rectification; `scored`: the lattice score too (the banded path makes
+  // it on the pool beside the peaks).
+  void findStreaks(BlobList& out, bool scored) {
     const int lh = streak.lattice_height;
-    pool.parallelFor(lh, [&](int b, int e) {
-      streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
-    });
-    forParts(lh, [&](int p, int b, int e) {
+    if (!scored) {
+      pool.parallelFor(lh, [&](int b, int e) {
+        streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
+      });
+    }
+    auto peaks = [&](int p, int b, int e) {
       streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
                                             streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
-    });
+    };
+    // The lattice is small: on this thread when the pool would only be woken
+    // for it (the same parts, so the same candidates).
+    if (scored) forParts(lh, peaks, /*here=*/true);
+    else forParts(lh, peaks);
     streak_merged.clear();
     for (size_t p = 0; p < streak_candidates.size(); ++p)
       streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
@@ -570,6 +801,15 @@ struct CpuPipeline::Impl {
       meanColor(blob.grid, blob.rgb);
       if (acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
     }
+  }
+
+  // Every blob the league uses is strongly colored; a near-neutral mean
+  // color is a white line crossing or a gray feature, whose chroma edges
+  // came from the carpet around it.
+  static bool saturated(const Blob& blob) {
+    const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+    const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
+    return !(hi - lo < kMinBlobSaturation * (hi + 1));
   }
 
   // Bilinear RGB of grid cell k from the last frame (co-sited samples).

@@ -129,10 +129,21 @@ class ChromaRowSource {
  protected:
   ~ChromaRowSource() = default;
 };
-// quadrantMinScoreFromChroma with the chroma rows from `src`.
+// Told of each score row as soon as it is written (rising order), so that
+// work on the row can run while it is in cache.
+class ScoreRowSink {
+ public:
+  virtual void rowDone(int y) = 0;
+
+ protected:
+  ~ScoreRowSink() = default;
+};
+// quadrantMinScoreFromChroma with the chroma rows from `src`; `sink`, when
+// given, hears of every row that gets a score (not the zero rows at the
+// plane's edges).
 void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, double scale, int r, int q,
                               float* score, int y_begin, int y_end, std::vector<uint32_t>& scratch,
-                              const GradientForms* forms = nullptr);
+                              const GradientForms* forms = nullptr, ScoreRowSink* sink = nullptr);
 
 // Exact circular quadrants of radius `radius` cells, from row prefix sums
 // (pass 1 only). Each quadrant is the quarter disc of the half-offset cells

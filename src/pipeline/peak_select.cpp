@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+
+#include "pipeline/kernels.h"
+#endif
 
 namespace dv {
 
@@ -19,6 +24,54 @@ inline bool isPeak(const float* row, const float* up, const float* dn, int x, fl
   return c > row[x - 1] && c >= row[x + 1] && c > up[x] && c >= dn[x];
 }
 
+// Peaks of one row, cells [x, x_end), in rising x; returns the new count
+// or -1 when out of room.
+inline int scalarPeaks(const float* row, const float* up, const float* dn, const uint8_t* m, int x, int x_end,
+                       float threshold, int y, PeakCandidate* out, int count, int capacity) {
+  for (; x < x_end; ++x) {
+    // Nearly every cell is below the threshold: skip 16 at a time with a
+    // vectorisable test before looking at single cells.
+    if (x + 16 <= x_end && !anyAbove(row + x, threshold)) {
+      x += 15;
+      continue;
+    }
+    const float c = row[x];
+    if (!(c > threshold)) continue;
+    if (isPeak(row, up, dn, x, c) && m[x]) {
+      if (count >= capacity) return -1;
+      out[count++] = {x, y, c};
+    }
+  }
+  return count;
+}
+
+#if defined(__x86_64__)
+// The same test on 8 cells at a time: where many cells pass the threshold
+// (carpet texture at a low threshold) the cell-by-cell test is the cost.
+// Comparisons are exact, so the peaks are the scalar loop's.
+__attribute__((target("avx2"))) int avx2Peaks(const float* row, const float* up, const float* dn, const uint8_t* m,
+                                              int x, int x_end, float threshold, int y, PeakCandidate* out,
+                                              int count, int capacity) {
+  const __m256 t = _mm256_set1_ps(threshold);
+  for (; x + 8 <= x_end; x += 8) {
+    const __m256 c = _mm256_loadu_ps(row + x);
+    __m256 ok = _mm256_cmp_ps(c, t, _CMP_GT_OQ);
+    if (_mm256_movemask_ps(ok) == 0) continue;  // most of the plane
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(row + x - 1), _CMP_GT_OQ));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(row + x + 1), _CMP_GE_OQ));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(up + x), _CMP_GT_OQ));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(c, _mm256_loadu_ps(dn + x), _CMP_GE_OQ));
+    for (unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(ok)); bits; bits &= bits - 1) {
+      const int xi = x + __builtin_ctz(bits);
+      if (!m[xi]) continue;
+      if (count >= capacity) return -1;
+      out[count++] = {xi, y, row[xi]};
+    }
+  }
+  return scalarPeaks(row, up, dn, m, x, x_end, threshold, y, out, count, capacity);
+}
+#endif
+
 }  // namespace
 
 int findPeakRows(const float* score, const uint8_t* mask, int width, int height, int margin,
@@ -32,20 +85,14 @@ int findPeakRows(const float* score, const uint8_t* mask, int width, int height,
     const float* dn = row + width;
     const uint8_t* m = mask + static_cast<size_t>(y) * width;
     const int x_end = width - margin;
-    for (int x = margin; x < x_end; ++x) {
-      // Nearly every cell is below the threshold: skip 16 at a time with a
-      // vectorisable test before looking at single cells.
-      if (x + 16 <= x_end && !anyAbove(row + x, threshold)) {
-        x += 15;
-        continue;
-      }
-      const float c = row[x];
-      if (!(c > threshold)) continue;
-      if (isPeak(row, up, dn, x, c) && m[x]) {
-        if (count >= capacity) return count;
-        out[count++] = {x, y, c};
-      }
-    }
+#if defined(__x86_64__)
+    const int n = cpuHasAvx2() ? avx2Peaks(row, up, dn, m, margin, x_end, threshold, y, out, count, capacity)
+                               : scalarPeaks(row, up, dn, m, margin, x_end, threshold, y, out, count, capacity);
+#else
+    const int n = scalarPeaks(row, up, dn, m, margin, x_end, threshold, y, out, count, capacity);
+#endif
+    if (n < 0) return capacity;
+    count = n;
   }
   return count;
 }

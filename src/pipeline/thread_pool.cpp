@@ -70,17 +70,29 @@ void ThreadPool::run(int n, Job job, void* ctx) {
     n_ = n;
     chunks_ = n < size_ * kChunksPerThread ? n : size_ * kChunksPerThread;
     next_chunk_.store(0, std::memory_order_relaxed);
-    busy_workers_.store(size_ - 1, std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_release);
+    const unsigned long g = generation_.load(std::memory_order_relaxed) + 1;
+    entry_.store(static_cast<unsigned long long>(g & 0xffffffffu) << 32, std::memory_order_relaxed);
+    generation_.store(g, std::memory_order_release);
   }
   wake_.notify_all();
   takeChunks();
-  // Every worker must have left the job before the next one is posted; they
-  // are usually done within microseconds.
-  for (int i = 0; i < 20000 && busy_workers_.load(std::memory_order_acquire) > 0; ++i) cpuRelax();
-  if (busy_workers_.load(std::memory_order_acquire) > 0) {
+  // No chunk is left: close the job to latecomers, then wait for the workers
+  // that joined it (usually done within microseconds) before the next job
+  // is posted.
+  const auto joined = [this] { return entry_.load(std::memory_order_acquire) & kJoinedMask; };
+  entry_.fetch_or(kClosed, std::memory_order_acq_rel);
+  for (int i = 0; i < 20000 && joined() > 0; ++i) cpuRelax();
+  if (joined() > 0) {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_cv_.wait(lock, [this] { return busy_workers_.load(std::memory_order_acquire) == 0; });
+    done_cv_.wait(lock, [&] { return joined() == 0; });
+  }
+}
+
+bool ThreadPool::join(unsigned long g) {
+  unsigned long long e = entry_.load(std::memory_order_acquire);
+  for (;;) {
+    if ((e >> 32) != (g & 0xffffffffu) || (e & kClosed)) return false;
+    if (entry_.compare_exchange_weak(e, e + 1, std::memory_order_acq_rel, std::memory_order_acquire)) return true;
   }
 }
 
@@ -102,8 +114,11 @@ void ThreadPool::workerLoop() {
       if (stop_) return;
       seen = generation_.load(std::memory_order_relaxed);
     }
+    // A job already closed (the caller did every chunk) is left alone.
+    if (!join(seen)) continue;
     takeChunks();
-    if (busy_workers_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+    const unsigned long long before = entry_.fetch_sub(1, std::memory_order_acq_rel);
+    if ((before & kJoinedMask) == 1 && (before & kClosed)) {
       std::lock_guard<std::mutex> lock(mutex_);
       done_cv_.notify_all();
     }

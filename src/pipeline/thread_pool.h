@@ -40,6 +40,8 @@ class ThreadPool {
   void run(int n, Job job, void* ctx);
   void workerLoop();
   void takeChunks();
+  // Joins job generation g unless it is closed or over; true if joined.
+  bool join(unsigned long g);
 
   int size_ = 1;
   std::vector<std::thread> workers_;
@@ -53,7 +55,14 @@ class ThreadPool {
   int chunks_ = 0, n_ = 0;
   std::atomic<unsigned long> generation_{0};
   std::atomic<int> next_chunk_{0};
-  std::atomic<int> busy_workers_{0};  // workers not yet done with the current job
+  // Who works on the current job: its generation (high 32 bits), a closed
+  // flag and the workers that joined it (low bits). The caller closes the
+  // job once it finds no chunk left and waits only for the workers that
+  // joined before that, not for one the OS has not run yet (on a busy
+  // machine that wait is a whole time slice).
+  std::atomic<unsigned long long> entry_{0};
+  static constexpr unsigned long long kClosed = 1ull << 31;
+  static constexpr unsigned long long kJoinedMask = kClosed - 1;
   bool stop_ = false;
 };
 
