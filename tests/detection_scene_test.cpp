@@ -36,7 +36,9 @@ void expectTopDownBars(bool half_resolution, const char* name) {
   EXPECT_GE(s.idAccuracy(), 0.99);
   EXPECT_LE(SceneScore::median(s.pos_err), 0.7);
   // The orientation bar is for 2448 x 2048 (1224: 0.25 deg median).
-  if (!half_resolution) EXPECT_LE(SceneScore::median(s.ang_err) * 180 / kPi, 0.3);
+  if (!half_resolution) {
+    EXPECT_LE(SceneScore::median(s.ang_err) * 180 / kPi, 0.3);
+  }
   EXPECT_GE(s.ballRecall(), 0.99);
   EXPECT_LE(SceneScore::median(s.ball_err), 3.0);
 }
@@ -97,7 +99,9 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   const bool side = std::string(GetParam()) == "side_view";
   EXPECT_GE(s.recall(), side ? 0.93 : 0.97);
   EXPECT_GE(s.idAccuracy(), side ? 0.92 : 0.99);
-  if (side) EXPECT_GE(s.recall() * s.idAccuracy(), fullRun() ? 0.86 : 0.8);
+  if (side) {
+    EXPECT_GE(s.recall() * s.idAccuracy(), fullRun() ? 0.86 : 0.8);
+  }
   EXPECT_GE(s.ballRecall(), 0.97);
 }
 
