@@ -10,7 +10,10 @@
 // pinned memory to the sorted peak list on the host), median and p99.
 //
 //   dotvision_ocl_bench [--platform P] [--device D] [--frames N]
-//                       [--width W] [--height H] [--full-bayer] [--list] [--dump]
+//                       [--width W] [--height H] [--full-bayer] [--stretch S]
+//                       [--list] [--dump]
+// --stretch S: the whitened gradient (pipeline/view_stretch.h) of a view
+// stretching blobs S times along 30 degrees, in the lower half of the grid.
 // --full-bayer: a sample per pixel (pipeline/bayer_full.h) instead of per
 // 2x2 cell; the view then spans four times the grid cells.
 #include <algorithm>
@@ -26,6 +29,7 @@
 #include "pipeline/opencl/ocl_engine.h"
 #include "pipeline/pipeline_options.h"
 #include "pipeline/streak_windows.h"
+#include "pipeline/whitening_form.h"
 
 namespace {
 
@@ -142,6 +146,7 @@ int main(int argc, char** argv) {
   dv::OclDeviceRequest req;
   int frames = 500, width = 2448, height = 2048;
   bool list = false, dump = false, full_bayer = false;
+  double stretch = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -159,6 +164,7 @@ int main(int argc, char** argv) {
     else if (a == "--list") list = true;
     else if (a == "--full-bayer") full_bayer = true;
     else if (a == "--dump") dump = true;
+    else if (a == "--stretch") stretch = std::atof(next().c_str());
     else {
       std::fprintf(stderr, "dotvision_ocl_bench: unknown option %s\n", a.c_str());
       return 2;
@@ -233,8 +239,26 @@ int main(int argc, char** argv) {
             cy < sw.coarse_height - 1 - sw.margin;
       }
     dv::applyStreakWindows(sw, std::move(streak_mask), cfg);
-    std::printf("frame %dx%d Bayer RGGB -> grid %dx%d, gradient %.2f cells, quadrant %d cells\n", width,
-                height, cfg.grid_width, cfg.grid_height, cfg.gradient_scale, cfg.quadrant_radius);
+    if (stretch > 1) {
+      // Whitened blocks in the lower half, plain blocks above (both paths).
+      const int bx = (cfg.grid_width + cfg.form_block - 1) / cfg.form_block;
+      const int by = (cfg.grid_height + cfg.form_block - 1) / cfg.form_block;
+      cfg.form_blocks_x = bx;
+      cfg.gradient_forms.assign(6 * static_cast<size_t>(bx) * by, 0.f);
+      cfg.form_plain.assign(static_cast<size_t>(bx) * by, 1);
+      cfg.form_plain_row.assign(by, 1);
+      const double a = 30 * 3.14159265358979 / 180;
+      for (int j = 0; j < by; ++j)
+        for (int i = 0; i < bx; ++i) {
+          float* c = &cfg.gradient_forms[6 * (static_cast<size_t>(j) * bx + i)];
+          const bool whitened = j >= by / 2;
+          dv::whiteningForm(whitened ? stretch - 1 : 0, std::cos(a), std::sin(a), c);
+          cfg.form_plain[static_cast<size_t>(j) * bx + i] = !whitened;
+          if (whitened) cfg.form_plain_row[j] = 0;
+        }
+    }
+    std::printf("frame %dx%d Bayer RGGB -> grid %dx%d, gradient %.2f cells, quadrant %d cells, stretch %.3f\n",
+                width, height, cfg.grid_width, cfg.grid_height, cfg.gradient_scale, cfg.quadrant_radius, stretch);
 
     dv::OclEngine engine(ctx, cfg);
     const auto discs = sceneDiscs(width, height);

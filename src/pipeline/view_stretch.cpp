@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/whitening_form.h"
+
 namespace dv {
 
 double viewStretch(const CameraModel& camera, const FieldMm& p, double plane_height, double dir[2]) {
@@ -46,16 +48,7 @@ GradientForms gradientForms(const CameraModel& camera, const RectifiedGrid& grid
         c[0] = 0, c[1] = 1, c[2] = 0, c[3] = 1, c[4] = 0, c[5] = 1;
         continue;
       }
-      // W = I + k d d^T; G = (W g)_x (W g)_y; energy form W^T W = I + (2k + k^2) d d^T.
-      const double m1x = 1 + k * d[0] * d[0], m1y = k * d[0] * d[1];
-      const double m2x = m1y, m2y = 1 + k * d[1] * d[1];
-      const double e = 2 * k + k * k;
-      c[0] = static_cast<float>(m1x * m2x);
-      c[1] = static_cast<float>(m1x * m2y + m1y * m2x);
-      c[2] = static_cast<float>(m1y * m2y);
-      c[3] = static_cast<float>(1 + e * d[0] * d[0]);
-      c[4] = static_cast<float>(e * d[0] * d[1]);
-      c[5] = static_cast<float>(1 + e * d[1] * d[1]);
+      whiteningForm(k, d[0], d[1], c);
       f.plain[static_cast<size_t>(by) * f.blocks_x + bx] = 0;
       f.plain_row[by] = 0;
       f.any = true;
