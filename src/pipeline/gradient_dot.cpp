@@ -74,8 +74,15 @@ void gradientDotRows(const float* ca, const float* cb, int width, int height, do
     gradientDotRow(ca, cb, width, height, scale, y, g + static_cast<size_t>(y) * width);
 }
 
-__attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(const float* ca, const float* cb, int width, double scale, int x, int y,
-                           int r, float give_up_above) {
+namespace {
+
+// The gradient energy of the window of radius r around (x, y): the mean of
+// term(gxa, gya, gxb, gyb) over its cells, halved; `term` gives a cell's
+// energy from its gradients in both chroma channels. Inlined into each
+// caller's instruction-set clone.
+template <class Term>
+__attribute__((always_inline)) inline float windowEnergy(const float* ca, const float* cb, int width, double scale,
+                                                         int x, int y, int r, float give_up_above, Term term) {
   const int k = static_cast<int>(std::floor(scale));
   const float a = static_cast<float>(scale - k), na = 1 - a;
   const size_t w = width;
@@ -104,7 +111,7 @@ __attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(con
         const float gya = na * (ap[j] - an[j]) + a * (ap1[j] - an1[j]);
         const float gxb = na * (bm[j + k] - bm[j - k]) + a * (bm[j + k + 1] - bm[j - k - 1]);
         const float gyb = na * (bp[j] - bn[j]) + a * (bp1[j] - bn1[j]);
-        acc[j] += gxa * gxa + gya * gya + gxb * gxb + gyb * gyb;
+        acc[j] += term(gxa, gya, gxb, gyb);
       }
       if (((yy - y + r) & 3) == 3) {  // every fourth row: is it over already?
         double partial = sum;
@@ -117,46 +124,25 @@ __attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(con
   return static_cast<float>(0.5 * sum / n);
 }
 
+}  // namespace
+
+__attribute__((target_clones("avx2", "default"))) float windowGradientEnergy(const float* ca, const float* cb,
+                                                                             int width, double scale, int x, int y,
+                                                                             int r, float give_up_above) {
+  return windowEnergy(ca, cb, width, scale, x, y, r, give_up_above, [](float gxa, float gya, float gxb, float gyb) {
+    return gxa * gxa + gya * gya + gxb * gxb + gyb * gyb;
+  });
+}
+
 __attribute__((target_clones("avx2", "default"))) float windowGradientEnergyForm(
     const float* ca, const float* cb, int width, double scale, int x, int y, int r, const float q[3],
     float give_up_above) {
-  // As windowGradientEnergy, with the energy form in each cell's term.
-  const int k = static_cast<int>(std::floor(scale));
-  const float a = static_cast<float>(scale - k), na = 1 - a;
   const float qxx = q[0], qxy2 = 2 * q[1], qyy = q[2];
-  const size_t w = width;
-  const int side = 2 * r + 1;
-  const double n = static_cast<double>(side) * side;
-  const double give_up_sum = 2.0 * static_cast<double>(give_up_above) * n;
-  double sum = 0;
-  constexpr int kStrip = 64;
-  for (int j0 = 0; j0 < side; j0 += kStrip) {
-    const int cols = std::min(kStrip, side - j0);
-    const int x0 = x - r + j0;
-    float acc[kStrip] = {};
-    for (int yy = y - r; yy <= y + r; ++yy) {
-      const float* am = ca + yy * w + x0;
-      const float* bm = cb + yy * w + x0;
-      const float *ap = ca + (yy + k) * w + x0, *an = ca + (yy - k) * w + x0;
-      const float *ap1 = ca + (yy + k + 1) * w + x0, *an1 = ca + (yy - k - 1) * w + x0;
-      const float *bp = cb + (yy + k) * w + x0, *bn = cb + (yy - k) * w + x0;
-      const float *bp1 = cb + (yy + k + 1) * w + x0, *bn1 = cb + (yy - k - 1) * w + x0;
-      for (int j = 0; j < cols; ++j) {
-        const float gxa = na * (am[j + k] - am[j - k]) + a * (am[j + k + 1] - am[j - k - 1]);
-        const float gya = na * (ap[j] - an[j]) + a * (ap1[j] - an1[j]);
-        const float gxb = na * (bm[j + k] - bm[j - k]) + a * (bm[j + k + 1] - bm[j - k - 1]);
-        const float gyb = na * (bp[j] - bn[j]) + a * (bp1[j] - bn1[j]);
-        acc[j] += qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb);
-      }
-      if (((yy - y + r) & 3) == 3) {
-        double partial = sum;
-        for (int j = 0; j < cols; ++j) partial += acc[j];
-        if (partial > give_up_sum) return give_up_above;
-      }
-    }
-    for (int j = 0; j < cols; ++j) sum += acc[j];
-  }
-  return static_cast<float>(0.5 * sum / n);
+  return windowEnergy(ca, cb, width, scale, x, y, r, give_up_above,
+                      [=](float gxa, float gya, float gxb, float gyb) {
+                        return qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) +
+                               qyy * (gya * gya + gyb * gyb);
+                      });
 }
 
 }  // namespace dv
