@@ -384,29 +384,13 @@ struct Detector::Impl {
     auto onRing = [&](const FieldMm& p) {
       return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
     };
-    auto angleAround = [&](const FieldMm& p) { return std::atan2(p.y - cp.y, p.x - cp.x); };
     if (best.rank > 0 && best.n == kPatternSlots - 1)
       tryPattern(best.blob, best.slot, best.n, best.pose, kPatternSlots);
     if (best.rank > 0 && best.n == kPatternSlots) return;
     // Two side blobs: on the ring, as far apart in angle as two slots.
-    for (int a = 0; a < k; ++a) {
-      const FieldMm pa = blobs[nbr[a]].at_ref;
-      if (!onRing(pa)) continue;
-      for (int b = a + 1; b < k; ++b) {
-        const FieldMm pb = blobs[nbr[b]].at_ref;
-        if (!onRing(pb)) continue;
-        const double seen = wrapAngle(angleAround(pb) - angleAround(pa));
-        for (int sa = 1; sa < kPatternSlots; ++sa)
-          for (int sb = 1; sb < kPatternSlots; ++sb) {
-            if (sa == sb || std::abs(wrapAngle(seen - (slotAngle(sb) - slotAngle(sa)))) > kWeakPairAngleTolerance)
-              continue;
-            const int blob[3] = {c, nbr[a], nbr[b]}, slot[3] = {0, sa, sb};
-            const FieldMm pts[3] = {cp, pa, pb};
-            const PatternPose pose = fitPattern(pts, slot, 3, opt.score_scale);
-            if (pose.score >= opt.min_weak_fit) tryPattern(blob, slot, 3, pose, kPatternSlots - 1);
-          }
-      }
-    }
+    forSideBlobPairs(c, nbr, k, [&](const int* blob, const int* slot, const PatternPose& pose) {
+      tryPattern(blob, slot, 3, pose, kPatternSlots - 1);
+    });
     if (best.rank > 0) return;
     // One side blob: each slot it may be, the other three all weak.
     for (int a = 0; a < k; ++a) {
@@ -441,6 +425,26 @@ struct Detector::Impl {
   // (slotOutOfView). Ranked below every pattern with three side blobs; its
   // id is a guess unless teammates or a track tell it.
   void completeAtImageEdge(int c, const int* nbr, int k, Hypothesis& best) {
+    forSideBlobPairs(c, nbr, k, [&](const int* blob, const int* slot, const PatternPose& pose) {
+      bool unseen = true;
+      for (int s = 1; s < kPatternSlots && unseen; ++s)
+        if (s != slot[1] && s != slot[2]) unseen = slotOutOfView(pose, s);
+      if (!unseen) return;
+      Hypothesis h;
+      h.n = 3;
+      for (int i = 0; i < 3; ++i) h.blob[i] = blob[i], h.slot[i] = slot[i];
+      h.pose = pose;
+      h.rank = pose.score * kFourBlobPenalty * kEdgeRankFactor;
+      if (h.rank > best.rank) best = h;
+    });
+  }
+
+  // Center blob c with each pair of its neighbours nbr[0, k) that lie on the
+  // side-blob ring as far apart in angle as two slots: fn(blob, slot, pose)
+  // with blob = {c, a, b}, slot = {0, sa, sb} and the pattern fitted to
+  // them, where the fit scores at least min_weak_fit.
+  template <class Fn>
+  void forSideBlobPairs(int c, const int* nbr, int k, Fn&& fn) const {
     const FieldMm cp = blobs[c].at_ref;
     auto onRing = [&](const FieldMm& p) {
       return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
@@ -457,19 +461,10 @@ struct Detector::Impl {
           for (int sb = 1; sb < kPatternSlots; ++sb) {
             if (sa == sb || std::abs(wrapAngle(seen - (slotAngle(sb) - slotAngle(sa)))) > kWeakPairAngleTolerance)
               continue;
-            Hypothesis h;
-            h.n = 3;
-            h.blob[0] = c, h.blob[1] = nbr[a], h.blob[2] = nbr[b];
-            h.slot[0] = 0, h.slot[1] = sa, h.slot[2] = sb;
+            const int blob[3] = {c, nbr[a], nbr[b]}, slot[3] = {0, sa, sb};
             const FieldMm pts[3] = {cp, pa, pb};
-            h.pose = fitPattern(pts, h.slot, 3, opt.score_scale);
-            if (h.pose.score < opt.min_weak_fit) continue;
-            bool unseen = true;
-            for (int s = 1; s < kPatternSlots && unseen; ++s)
-              if (s != sa && s != sb) unseen = slotOutOfView(h.pose, s);
-            if (!unseen) continue;
-            h.rank = h.pose.score * kFourBlobPenalty * kEdgeRankFactor;
-            if (h.rank > best.rank) best = h;
+            const PatternPose pose = fitPattern(pts, slot, 3, opt.score_scale);
+            if (pose.score >= opt.min_weak_fit) fn(blob, slot, pose);
           }
       }
     }
