@@ -42,6 +42,18 @@ inline int3 dv_window_rgb(__global const uchar* raw, int stride, int w, int h, i
   return (int3)(r, g, b);
 }
 
+// The color gradients of cell (x, y) at scale k + a (linear between samples
+// k and k + 1 away), as gradientRow in pipeline/blob_score.cpp:
+// (gx, gy) of chroma channel a, then of channel b.
+inline float4 dv_cell_gradient(__global const float2* chroma, size_t w, int k, float a, float na, int x, int y) {
+  __global const float2* mid = chroma + y * w;
+  const float2 xp = mid[x + k], xm = mid[x - k], xp1 = mid[x + k + 1], xm1 = mid[x - k - 1];
+  const float2 yp = chroma[(y + k) * w + x], ym = chroma[(y - k) * w + x];
+  const float2 yp1 = chroma[(y + k + 1) * w + x], ym1 = chroma[(y - k - 1) * w + x];
+  return (float4)(na * (xp.x - xm.x) + a * (xp1.x - xm1.x), na * (yp.x - ym.x) + a * (yp1.x - ym1.x),
+                  na * (xp.y - xm.y) + a * (xp1.y - xm1.y), na * (yp.y - ym.y) + a * (yp1.y - ym1.y));
+}
+
 #ifdef DV_TEST_BUILD_FAILURE
 #error "build failure requested by a test (DV_TEST_BUILD_FAILURE)"
 #endif

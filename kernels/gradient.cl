@@ -20,14 +20,8 @@ __kernel void gradient_dot(__global const float2* chroma, int width, int height,
     gdot[y * w + x] = 0;
     return;
   }
-  __global const float2* mid = chroma + y * w;
-  const float2 xp = mid[x + k], xm = mid[x - k], xp1 = mid[x + k + 1], xm1 = mid[x - k - 1];
-  const float2 yp = chroma[(y + k) * w + x], ym = chroma[(y - k) * w + x];
-  const float2 yp1 = chroma[(y + k + 1) * w + x], ym1 = chroma[(y - k - 1) * w + x];
-  const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
-  const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
-  const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
-  const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
+  const float4 g = dv_cell_gradient(chroma, w, k, a, na, x, y);
+  const float gxa = g.x, gya = g.y, gxb = g.z, gyb = g.w;
   if (use_forms && !plain_row[y / block]) {
     __global const float* f = forms + 6 * ((y / block) * blocks_x + x / block);
     const float v = f[0] * (gxa * gxa + gxb * gxb) + f[1] * (gxa * gya + gxb * gyb) + f[2] * (gya * gya + gyb * gyb);

@@ -49,48 +49,20 @@ inline float dv_peak_offset(float l, float c, float r) {
 // Mean gradient energy 1/2 sum_c (gx^2 + gy^2) over the (2r+1)^2 window,
 // the same gradient and summation order as windowGradientEnergy
 // (pipeline/gradient_dot.cpp): a float sum down each column, the columns
-// added in double (where available).
+// added in double (where available). With an energy form q (view_stretch.h,
+// not null) each cell's term is q's, as windowGradientEnergyForm.
 inline float dv_window_energy(__global const float2* chroma, int width, int k, float a, float na,
-                              int x, int y, int r) {
+                              int x, int y, int r, __global const float* q) {
   const size_t w = width;
+  const float qxx = q ? q[0] : 0, qxy2 = q ? 2 * q[1] : 0, qyy = q ? q[2] : 0;
   dv_real sum = 0;
   for (int xx = x - r; xx <= x + r; ++xx) {
     float col = 0;
     for (int yy = y - r; yy <= y + r; ++yy) {
-      __global const float2* mid = chroma + yy * w;
-      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
-      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
-      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
-      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
-      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
-      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
-      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
-      col += gxa * gxa + gya * gya + gxb * gxb + gyb * gyb;
-    }
-    sum += (dv_real)col;
-  }
-  return (float)((dv_real)0.5 * sum / (dv_real)((2 * r + 1) * (2 * r + 1)));
-}
-
-// The same with the energy form q (pipeline/view_stretch.h), as
-// windowGradientEnergyForm.
-inline float dv_window_energy_form(__global const float2* chroma, int width, int k, float a, float na,
-                                   int x, int y, int r, __global const float* q) {
-  const size_t w = width;
-  const float qxx = q[0], qxy2 = 2 * q[1], qyy = q[2];
-  dv_real sum = 0;
-  for (int xx = x - r; xx <= x + r; ++xx) {
-    float col = 0;
-    for (int yy = y - r; yy <= y + r; ++yy) {
-      __global const float2* mid = chroma + yy * w;
-      const float2 xp = mid[xx + k], xm = mid[xx - k], xp1 = mid[xx + k + 1], xm1 = mid[xx - k - 1];
-      const float2 yp = chroma[(yy + k) * w + xx], ym = chroma[(yy - k) * w + xx];
-      const float2 yp1 = chroma[(yy + k + 1) * w + xx], ym1 = chroma[(yy - k - 1) * w + xx];
-      const float gxa = na * (xp.x - xm.x) + a * (xp1.x - xm1.x);
-      const float gya = na * (yp.x - ym.x) + a * (yp1.x - ym1.x);
-      const float gxb = na * (xp.y - xm.y) + a * (xp1.y - xm1.y);
-      const float gyb = na * (yp.y - ym.y) + a * (yp1.y - ym1.y);
-      col += qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb);
+      const float4 g = dv_cell_gradient(chroma, w, k, a, na, xx, yy);
+      const float gxa = g.x, gya = g.y, gxb = g.z, gyb = g.w;
+      col += q ? qxx * (gxa * gxa + gxb * gxb) + qxy2 * (gxa * gya + gxb * gyb) + qyy * (gya * gya + gyb * gyb)
+               : gxa * gxa + gya * gya + gxb * gxb + gyb * gyb;
     }
     sum += (dv_real)col;
   }
@@ -176,8 +148,8 @@ __kernel void find_peaks(__global const float* score, __global const uchar* mask
   if (!(c > l && c >= rt && c > up && c >= dn && mask[cell])) return;
   const int blk = (y / form_block) * form_blocks_x + x / form_block;
   const float energy = use_forms && !form_plain[blk]
-                           ? dv_window_energy_form(chroma, width, k, a, na, x, y, window, forms + 6 * blk + 3)
-                           : dv_window_energy(chroma, width, k, a, na, x, y, window);
+                           ? dv_window_energy(chroma, width, k, a, na, x, y, window, forms + 6 * blk + 3)
+                           : dv_window_energy(chroma, width, k, a, na, x, y, window, 0);
   const float ratio = c / (energy + energy_floor);
   if (!(ratio > threshold)) return;
   const uint slot = atomic_inc(&results[DV_RESULT_PEAK_COUNT]);
