@@ -116,6 +116,33 @@ void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string
   EXPECT_EQ(a, b) << what;
 }
 
+// The detector (no tracking) on both backends' blob lists: the same robots
+// (team, id, position within 0.5 mm, orientation within 1e-3 rad) and balls
+// (within 0.5 mm). Returns the detections from the CPU's blobs.
+Detections expectSameDetections(const CameraModel& cam, const FieldModel& field, const BlobList& cpu,
+                                const BlobList& ocl) {
+  DetectorOptions dopt;
+  dopt.tracking = false;
+  Detector da(cam, field, dopt), db(cam, field, dopt);
+  Detections ra, rb;
+  da.process(cpu, 0, ra);
+  db.process(ocl, 0, rb);
+  EXPECT_EQ(ra.robots.size(), rb.robots.size());
+  EXPECT_EQ(ra.balls.size(), rb.balls.size());
+  for (size_t i = 0; i < std::min(ra.robots.size(), rb.robots.size()); ++i) {
+    EXPECT_EQ(ra.robots[i].team, rb.robots[i].team);
+    EXPECT_EQ(ra.robots[i].id, rb.robots[i].id);
+    EXPECT_NEAR(ra.robots[i].position.x, rb.robots[i].position.x, 0.5);
+    EXPECT_NEAR(ra.robots[i].position.y, rb.robots[i].position.y, 0.5);
+    EXPECT_NEAR(ra.robots[i].orientation, rb.robots[i].orientation, 1e-3);
+  }
+  for (size_t i = 0; i < std::min(ra.balls.size(), rb.balls.size()); ++i) {
+    EXPECT_NEAR(ra.balls[i].position.x, rb.balls[i].position.x, 0.5);
+    EXPECT_NEAR(ra.balls[i].position.y, rb.balls[i].position.y, 0.5);
+  }
+  return ra;
+}
+
 TEST(OpenClRuntime, ListsDevicesAndNamesThemWhenNothingMatches) {
   DV_REQUIRE_OPENCL();
   const auto devices = listOpenClDevices();
@@ -410,25 +437,7 @@ TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
     expectSameBlobs(a4, b4, "rendered scene, 4 weak peaks at most", capped);
   }
 
-  DetectorOptions dopt;
-  dopt.tracking = false;
-  Detector da(cam, spec.field, dopt), db(cam, spec.field, dopt);
-  Detections ra, rb;
-  da.process(a, 0, ra);
-  db.process(b, 0, rb);
-  ASSERT_EQ(ra.robots.size(), rb.robots.size());
-  ASSERT_EQ(ra.balls.size(), rb.balls.size());
-  for (size_t i = 0; i < ra.robots.size(); ++i) {
-    EXPECT_EQ(ra.robots[i].team, rb.robots[i].team);
-    EXPECT_EQ(ra.robots[i].id, rb.robots[i].id);
-    EXPECT_NEAR(ra.robots[i].position.x, rb.robots[i].position.x, 0.5);
-    EXPECT_NEAR(ra.robots[i].position.y, rb.robots[i].position.y, 0.5);
-    EXPECT_NEAR(ra.robots[i].orientation, rb.robots[i].orientation, 1e-3);
-  }
-  for (size_t i = 0; i < ra.balls.size(); ++i) {
-    EXPECT_NEAR(ra.balls[i].position.x, rb.balls[i].position.x, 0.5);
-    EXPECT_NEAR(ra.balls[i].position.y, rb.balls[i].position.y, 0.5);
-  }
+  const Detections ra = expectSameDetections(cam, spec.field, a, b);
   EXPECT_FALSE(ra.robots.empty());
 }
 
@@ -450,20 +459,7 @@ TEST(OpenClScenes, SideViewWhitenedGradientMatchesTheCpuReference) {
   ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
   EXPECT_GE(a.blobs.size(), 40u);
   expectSameBlobs(a, b, "side view");
-  DetectorOptions dopt;
-  dopt.tracking = false;
-  Detector da(cam, spec.field, dopt), db(cam, spec.field, dopt);
-  Detections ra, rb;
-  da.process(a, 0, ra);
-  db.process(b, 0, rb);
-  ASSERT_EQ(ra.robots.size(), rb.robots.size());
-  EXPECT_GE(ra.robots.size(), 9u);
-  for (size_t i = 0; i < ra.robots.size(); ++i) {
-    EXPECT_EQ(ra.robots[i].team, rb.robots[i].team);
-    EXPECT_EQ(ra.robots[i].id, rb.robots[i].id);
-    EXPECT_NEAR(ra.robots[i].position.x, rb.robots[i].position.x, 0.5);
-    EXPECT_NEAR(ra.robots[i].position.y, rb.robots[i].position.y, 0.5);
-  }
+  EXPECT_GE(expectSameDetections(cam, spec.field, a, b).robots.size(), 9u);
 }
 
 // A ball at 6.5 m/s, a streak the round score misses: the fast-ball pass
@@ -504,16 +500,8 @@ TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
   EXPECT_EQ(streaks, 1);
   expectSameBlobs(a, b, "fast ball");
 
-  DetectorOptions dopt;
-  dopt.tracking = false;
-  Detector da(cam, spec.field, dopt), db(cam, spec.field, dopt);
-  Detections ra, rb;
-  da.process(a, 0, ra);
-  db.process(b, 0, rb);
+  const Detections ra = expectSameDetections(cam, spec.field, a, b);
   ASSERT_EQ(ra.balls.size(), 1u);
-  ASSERT_EQ(rb.balls.size(), 1u);
-  EXPECT_NEAR(ra.balls[0].position.x, rb.balls[0].position.x, 0.5);
-  EXPECT_NEAR(ra.balls[0].position.y, rb.balls[0].position.y, 0.5);
   const auto& truth = frame.truth.balls(0);
   EXPECT_LT(std::hypot(ra.balls[0].position.x - truth.x(), ra.balls[0].position.y - truth.y()), 5.0);
 }
