@@ -116,6 +116,23 @@ void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string
   EXPECT_EQ(a, b) << what;
 }
 
+// One frame through both backends built with `opt`: blob lists a (CPU) and
+// b (OpenCL); ok() says whether both ran, error() why not.
+struct BothBackends {
+  BothBackends(const CameraModel& cam, const FieldModel& field, const PipelineOptions& opt, const cv::Mat& image)
+      : cpu(cam, field, opt), ocl(cam, field, opt, *testDevice()) {
+    cpu_ok = cpu.process(image, a);
+    ocl_ok = ocl.process(image, b);
+  }
+  bool ok() const { return cpu_ok && ocl_ok; }
+  std::string error() const { return "cpu: " + cpu.lastError() + "; opencl: " + ocl.lastError(); }
+
+  CpuPipeline cpu;
+  OpenClPipeline ocl;
+  BlobList a, b;
+  bool cpu_ok = false, ocl_ok = false;
+};
+
 // The detector (no tracking) on both backends' blob lists: the same robots
 // (team, id, position within 0.5 mm, orientation within 1e-3 rad) and balls
 // (within 0.5 mm). Returns the detections from the CPU's blobs.
@@ -415,11 +432,9 @@ TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
   const RenderedFrame frame = renderer.render(0, 0);
   const CameraModel cam(spec.cameras[0].calib);
   PipelineOptions opt;
-  CpuPipeline cpu(cam, spec.field, opt);
-  OpenClPipeline ocl(cam, spec.field, opt, *testDevice());
-  BlobList a, b;
-  ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
-  ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
+  const BothBackends run(cam, spec.field, opt, frame.image);
+  ASSERT_TRUE(run.ok()) << run.error();
+  const BlobList &a = run.a, &b = run.b;
   EXPECT_GE(a.blobs.size(), 10u);
   EXPECT_GE(a.weak.size(), 5u);  // carpet texture and noise near blobs
   expectSameBlobs(a, b, "rendered scene");
@@ -427,14 +442,11 @@ TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {
     // A weak capacity that binds: both keep the same strongest few.
     PipelineOptions capped = opt;
     capped.max_weak_blobs = 4;
-    CpuPipeline cpu4(cam, spec.field, capped);
-    OpenClPipeline ocl4(cam, spec.field, capped, *testDevice());
-    BlobList a4, b4;
-    ASSERT_TRUE(cpu4.process(frame.image, a4)) << cpu4.lastError();
-    ASSERT_TRUE(ocl4.process(frame.image, b4)) << ocl4.lastError();
-    EXPECT_LE(a4.weak.size(), 4u);
-    EXPECT_GE(a4.weak.size(), 3u);  // one of the four may be a second maximum of a blob
-    expectSameBlobs(a4, b4, "rendered scene, 4 weak peaks at most", capped);
+    const BothBackends run4(cam, spec.field, capped, frame.image);
+    ASSERT_TRUE(run4.ok()) << run4.error();
+    EXPECT_LE(run4.a.weak.size(), 4u);
+    EXPECT_GE(run4.a.weak.size(), 3u);  // one of the four may be a second maximum of a blob
+    expectSameBlobs(run4.a, run4.b, "rendered scene, 4 weak peaks at most", capped);
   }
 
   const Detections ra = expectSameDetections(cam, spec.field, a, b);
@@ -451,15 +463,12 @@ TEST(OpenClScenes, SideViewWhitenedGradientMatchesTheCpuReference) {
   const RenderedFrame frame = renderer.render(0, 0);
   const CameraModel cam(spec.cameras[0].calib);
   PipelineOptions opt;
-  CpuPipeline cpu(cam, spec.field, opt);
-  ASSERT_TRUE(gradientForms(cam, cpu.grid(), opt.plane_height).any);
-  OpenClPipeline ocl(cam, spec.field, opt, *testDevice());
-  BlobList a, b;
-  ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
-  ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
-  EXPECT_GE(a.blobs.size(), 40u);
-  expectSameBlobs(a, b, "side view");
-  EXPECT_GE(expectSameDetections(cam, spec.field, a, b).robots.size(), 9u);
+  const BothBackends run(cam, spec.field, opt, frame.image);
+  ASSERT_TRUE(gradientForms(cam, run.cpu.grid(), opt.plane_height).any);
+  ASSERT_TRUE(run.ok()) << run.error();
+  EXPECT_GE(run.a.blobs.size(), 40u);
+  expectSameBlobs(run.a, run.b, "side view");
+  EXPECT_GE(expectSameDetections(cam, spec.field, run.a, run.b).robots.size(), 9u);
 }
 
 // A ball at 6.5 m/s, a streak the round score misses: the fast-ball pass
@@ -473,15 +482,13 @@ TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
   const RenderedFrame frame = renderer.render(test::kStreakFrame, 0);
   const CameraModel cam(spec.cameras[0].calib);
   PipelineOptions opt;
-  CpuPipeline cpu(cam, spec.field, opt);
-  OpenClPipeline ocl(cam, spec.field, opt, *testDevice());
-  BlobList a, b;
-  ASSERT_TRUE(cpu.process(frame.image, a)) << cpu.lastError();
-  ASSERT_TRUE(ocl.process(frame.image, b)) << ocl.lastError();
+  const BothBackends run(cam, spec.field, opt, frame.image);
+  ASSERT_TRUE(run.ok()) << run.error();
+  const BlobList &a = run.a, &b = run.b;
 
-  const auto& e = ocl.engine();
+  const auto& e = run.ocl.engine();
   const int w = e.config().grid_width, h = e.config().grid_height;
-  const StreakWindows sw = streakWindows(cpu.grid().scale, w, h);
+  const StreakWindows sw = streakWindows(run.cpu.grid().scale, w, h);
   EXPECT_EQ(e.config().streak_coarse_width, sw.coarse_width);
   EXPECT_EQ(e.config().streak_margin, sw.margin);
   const auto chroma = e.readChroma();
