@@ -606,6 +606,7 @@ struct Detector::Impl {
         colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
         r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
       }
+      if (r.seen_sides != 0xF) probeMissingSides(r, green, pink, colors);
       r.colors = colors;
       r.id = patternId(colors);
     }
@@ -644,6 +645,28 @@ struct Detector::Impl {
     for (int k : {kYellow, kBlue, kGreen, kPink})
       if (frame_seen[k]) ref[n] = classes[k].reference, seen[n] = frame_color[k], ++n;
     color_map.fit(ref, seen, n);
+  }
+
+  // The side slots of `r` that neither a blob nor a weak peak filled: the
+  // color the camera saw there (seen_color.h), when clearly nearer to the
+  // robot's own `green` or `pink`, sets the slot's marker.
+  void probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,
+                         std::array<MarkerColor, 4>& colors) const {
+    if (!opt.probe_missing_sides || !frame_view.image) return;
+    Hypothesis at_team = r;
+    refit(at_team);
+    const double z = teamHeight(r.team);
+    for (int s = 1; s < kPatternSlots; ++s) {
+      if (r.seen_sides >> (s - 1) & 1) continue;
+      const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+      const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
+      if (seen.share < opt.min_probe_share) continue;
+      const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
+                                      static_cast<float>(opt.probe_color_margin));
+      if (label < 0) continue;
+      colors[s - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides |= static_cast<uint8_t>(1u << (s - 1));
+    }
   }
 
   // Refit at the team's height (pattern offsets are mm on the robot top).
@@ -1107,7 +1130,10 @@ struct Detector::Impl {
   std::vector<FieldMm> raw_positions;
   double plane_height = 150;
 
-  void process(const BlobList& list, double t, Detections& out) {
+  FrameView frame_view;  // the frame being processed (may be empty)
+
+  void process(const BlobList& list, double t, Detections& out, const FrameView& frame) {
+    frame_view = frame;
     out.balls.clear();
     out.robots.clear();
     // Time going backwards or a long gap: the frames are unrelated.
@@ -1208,8 +1234,8 @@ Detector& Detector::operator=(Detector&&) noexcept = default;
 
 void Detector::reset() { impl_->reset(); }
 
-void Detector::process(const BlobList& blobs, double t_capture, Detections& out) {
-  impl_->process(blobs, t_capture, out);
+void Detector::process(const BlobList& blobs, double t_capture, Detections& out, const FrameView& frame) {
+  impl_->process(blobs, t_capture, out, frame);
 }
 
 }  // namespace dv

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/units.h"
+#include "detection/seen_color.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "geometry/robot_pattern.h"
@@ -104,6 +105,19 @@ struct DetectorOptions {
   // side color is below this fraction of its distance to the other.
   double weak_color_margin = 0.7;
 
+  // --- side blobs that did not peak, read from the frame (seen_color.h) ---
+  // A robot's side slot without a blob or a weak peak (its dot cut by the
+  // image border, or one or two pixels tall far away) takes the marker
+  // color the camera saw there, when a frame is given to process(): the
+  // mean color of a disc of probe_radius mm around the slot, over the part
+  // of it inside the image (at least min_probe_share of it), clearly nearer
+  // to the robot's own green or pink: its distance to the nearer below
+  // probe_color_margin times its distance to the other.
+  bool probe_missing_sides = true;
+  double probe_radius = 13;        // mm, inside a 20 mm dot with room for pose error
+  double min_probe_share = 0.1;
+  double probe_color_margin = 0.5;
+
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color
   double reference_force = 0.1;  // f_r, pull to the reference color
@@ -150,7 +164,10 @@ class Detector {
   void reset();
   // blobs: one frame's blobs on the plane blobs.plane_height; t_capture in
   // seconds. No allocation after warm-up (buffers are kept and reserved).
-  void process(const BlobList& blobs, double t_capture, Detections& out);
+  // `frame`: the image the blobs came from, for the colors of side slots
+  // that did not peak (probe_missing_sides); without it those stay unknown.
+  void process(const BlobList& blobs, double t_capture, Detections& out,
+               const FrameView& frame = {});
 
   const DetectorOptions& options() const { return opt_; }
 
