@@ -7,6 +7,8 @@
 
 #include "detection/color_classes.h"
 #include "detection/seen_color.h"
+#include "detection/pattern_fit.h"
+#include "pipeline/view_stretch.h"
 #include "scene_scoring.h"
 
 namespace dv {
@@ -119,12 +121,37 @@ TEST(SideViewDiagnosis, PrintFailures) {
       if (ok) return;
       const double dist = std::hypot(t.x() - cpos.x(), t.y() - cpos.y());
       std::printf(" robot %s %d at (%.0f %.0f) %.2f m: ", team ? "B" : "Y", id, t.x(), t.y(), dist / 1000);
+      {
+        double d[2];
+        std::printf("stretch %.2f ", viewStretch(cam, {t.x(), t.y()}, 140, d));
+      }
       if (det)
         std::printf("detected %s %d conf %.2f\n", det->team == Team::Blue ? "B" : "Y", det->id, det->confidence);
       else
         std::printf("not detected\n");
       const auto colors = patternColors(id);
       const double cs = std::cos(t.orientation()), sn = std::sin(t.orientation());
+      FieldMm slot_at[5];
+      for (int s = 0; s < 5; ++s) {
+        const FieldMm o = s == 0 ? FieldMm{0, 0} : RobotPatternGeometry::kSideBlobs[s - 1];
+        slot_at[s] = onPlane(t.x() + cs * o.x - sn * o.y, t.y() + sn * o.x + cs * o.y, t.height());
+      }
+      for (int w = 0; w < 2; ++w)
+        for (const auto& b : w ? blobs.weak : blobs.blobs) {
+          if (std::hypot(b.position.x - slot_at[0].x, b.position.y - slot_at[0].y) > 110) continue;
+          int best = 0;
+          double bd = 1e9;
+          for (int s = 0; s < 5; ++s) {
+            const double d = std::hypot(b.position.x - slot_at[s].x, b.position.y - slot_at[s].y);
+            if (d < bd) bd = d, best = s;
+          }
+          const double ox = b.position.x - slot_at[best].x, oy = b.position.y - slot_at[best].y;
+          const double ux = slot_at[best].x - cpos.x(), uy = slot_at[best].y - cpos.y(), un = std::hypot(ux, uy);
+          std::printf("   (%.0f %.0f)%s ", b.position.x, b.position.y, b.streak ? " STREAK" : "");
+          std::printf("   %s %.3f near slot %d: %.1f mm (along ray %.1f, across %.1f) rgb (%.0f %.0f %.0f)\n",
+                      w ? "weak" : "blob", b.score, best, bd, (ox * ux + oy * uy) / un, (-ox * uy + oy * ux) / un,
+                      b.rgb[0], b.rgb[1], b.rgb[2]);
+        }
       for (int s = 0; s < 5; ++s) {
         const FieldMm o = s == 0 ? FieldMm{0, 0} : RobotPatternGeometry::kSideBlobs[s - 1];
         const double fx = t.x() + cs * o.x - sn * o.y, fy = t.y() + sn * o.x + cs * o.y;

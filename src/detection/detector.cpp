@@ -12,6 +12,7 @@
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
 #include "detection/weak_sides.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 namespace {
@@ -302,6 +303,7 @@ struct Detector::Impl {
           std::swap(ang[b], ang[b - 1]);
           std::swap(nbr[b], nbr[b - 1]);
         }
+      const FitTolerance tol = fitToleranceAt(cp);
       Hypothesis best;
       best.rank = -1;
       // Side blobs in increasing angle map to slots in increasing angle, up
@@ -319,7 +321,7 @@ struct Detector::Impl {
             h.slot[q + 1] = slots_sorted[(q + r) % m];
             pts[q + 1] = blobs[nbr[pick[q]]].at_ref;
           }
-          h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+          h.pose = fitPattern(pts, h.slot, h.n, tol);
           h.rank = h.pose.score * (m == 4 ? 1.0 : kFourBlobPenalty);
           if (h.pose.score >= opt.min_robot_score && h.rank > best.rank) best = h;
         }
@@ -349,6 +351,18 @@ struct Detector::Impl {
     }
   }
 
+  // How closely blobs around `p` (search plane) must fit the pattern: the
+  // score scale, stretched along the viewing ray where the camera sees the
+  // field at a grazing angle (view_stretch.h; from the same stretch on where
+  // the pixel stage whitens the gradient, so other views fit as before).
+  FitTolerance fitToleranceAt(const FieldMm& p) const {
+    FitTolerance t{opt.score_scale};
+    double dir[2];
+    const double s = viewStretch(camera, p, ref_height, dir);
+    if (s >= kMinStretch) t.stretch = s, t.along_x = dir[0], t.along_y = -dir[1];
+    return t;
+  }
+
   // Weak peaks for the side blobs a center's pattern lacks (weak_sides.h):
   // the missing slot of its best three-side pattern; else the missing slots
   // of two side blobs that fit the pattern tightly with the center (three
@@ -358,6 +372,7 @@ struct Detector::Impl {
   void completeWithWeak(int c, const int* nbr, int k, Hypothesis& best) {
     const FieldMm cp = blobs[c].at_ref;
     if (weak_index.within(cp, opt.side_search_radius).empty()) return;
+    const FitTolerance tol = fitToleranceAt(cp);
     // The pattern of n blobs (slots given) at `pose`, with weak peaks in its
     // missing slots; at least `min_n` blobs in all.
     auto tryPattern = [&](const int* blob, const int* slot, int n, const PatternPose& pose, int min_n) {
@@ -365,7 +380,9 @@ struct Detector::Impl {
       for (int i = 0; i < n; ++i) filled |= 1u << slot[i];
       int found[kPatternSlots];
       double error[kPatternSlots];
-      const int n_weak = findWeakSlots(pose, filled, weak_index, opt.weak_side_tolerance, found, error);
+      FitTolerance weak_tol = tol;
+      weak_tol.mm = opt.weak_side_tolerance;
+      const int n_weak = findWeakSlots(pose, filled, weak_index, weak_tol, found, error);
       if (n_weak == 0 || n + n_weak < min_n) return;
       Hypothesis h;
       h.n = 0;
@@ -376,7 +393,7 @@ struct Detector::Impl {
         const int b = n_strong + found[s];
         h.blob[h.n] = b, h.slot[h.n] = s, pts[h.n++] = blobs[b].at_ref;
       }
-      h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+      h.pose = fitPattern(pts, h.slot, h.n, tol);
       if (h.pose.score < opt.min_weak_fit) return;
       h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kFourBlobPenalty) * (1 - kWeakSideRankStep * n_weak);
       if (h.rank > best.rank) best = h;
@@ -399,7 +416,7 @@ struct Detector::Impl {
       for (int sa = 1; sa < kPatternSlots; ++sa) {
         const int blob[2] = {c, nbr[a]}, slot[2] = {0, sa};
         const FieldMm pts[2] = {cp, pa};
-        tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, opt.score_scale), kPatternSlots);
+        tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, tol), kPatternSlots);
       }
     }
   }
@@ -450,6 +467,7 @@ struct Detector::Impl {
       return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
     };
     auto angleAround = [&](const FieldMm& p) { return std::atan2(p.y - cp.y, p.x - cp.x); };
+    const FitTolerance tol = fitToleranceAt(cp);
     for (int a = 0; a < k; ++a) {
       const FieldMm pa = blobs[nbr[a]].at_ref;
       if (!onRing(pa)) continue;
@@ -463,7 +481,7 @@ struct Detector::Impl {
               continue;
             const int blob[3] = {c, nbr[a], nbr[b]}, slot[3] = {0, sa, sb};
             const FieldMm pts[3] = {cp, pa, pb};
-            const PatternPose pose = fitPattern(pts, slot, 3, opt.score_scale);
+            const PatternPose pose = fitPattern(pts, slot, 3, tol);
             if (pose.score >= opt.min_weak_fit) fn(blob, slot, pose);
           }
       }

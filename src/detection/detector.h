@@ -115,7 +115,7 @@ struct DetectorOptions {
   // probe_color_margin times its distance to the other.
   bool probe_missing_sides = true;
   double probe_radius = 13;        // mm, inside a 20 mm dot with room for pose error
-  double min_probe_share = 0.1;
+  double min_probe_share = 0.05;
   double probe_color_margin = 0.5;
 
   // --- color classes (§5.3.5) ---
