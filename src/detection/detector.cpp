@@ -1231,6 +1231,11 @@ void validateDetectorOptions(const DetectorOptions& o, const CameraModel& camera
          std::to_string(o.retention_force) + " and " + std::to_string(o.reference_force));
   if (!(o.min_robot_score >= 0 && o.min_robot_score < 1))
     fail("min_robot_score must be in [0, 1), got " + std::to_string(o.min_robot_score));
+  positive(o.probe_radius, "probe_radius");
+  if (!(o.min_probe_share > 0 && o.min_probe_share <= 1))
+    fail("min_probe_share must be in (0, 1], got " + std::to_string(o.min_probe_share));
+  if (!(o.probe_color_margin > 0 && o.probe_color_margin < 1))
+    fail("probe_color_margin must be in (0, 1), got " + std::to_string(o.probe_color_margin));
   if (o.min_side_blobs < 3 || o.min_side_blobs > 4)
     fail("min_side_blobs must be 3 or 4, got " + std::to_string(o.min_side_blobs));
   if (o.identity_switch_frames < 1)
