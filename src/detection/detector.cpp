@@ -144,6 +144,7 @@ struct Detector::Impl {
   Eigen::Vector3d cam_pos;
   double ref_height = 140;
   FieldRect ball_area;
+  bool stretched_view = false;  // some field point in view is stretched (fitToleranceAt)
 
   ColorClass classes[kNumClasses];
   ColorVec frame_color[kNumClasses];  // this frame's class colors
@@ -173,6 +174,7 @@ struct Detector::Impl {
       : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
     ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
     ball_area = field.withBoundary();
+    stretched_view = seesStretchedField();
     const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
                                          &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
                                          &opt.ref_white};
@@ -357,10 +359,27 @@ struct Detector::Impl {
   // the pixel stage whitens the gradient, so other views fit as before).
   FitTolerance fitToleranceAt(const FieldMm& p) const {
     FitTolerance t{opt.score_scale};
+    if (!stretched_view) return t;
     double dir[2];
     const double s = viewStretch(camera, p, ref_height, dir);
     if (s >= kMinStretch) t.stretch = s, t.along_x = dir[0], t.along_y = -dir[1];
     return t;
+  }
+
+  // Whether the camera sees any part of the field (plus boundary) stretched
+  // enough for fitToleranceAt to stretch its tolerance, on a 100 mm lattice;
+  // a camera looking down sees none, and skips the per-blob stretch.
+  bool seesStretchedField() const {
+    const auto& c = camera.calibration();
+    constexpr double kStep = 100;
+    for (double y = ball_area.y_min; y <= ball_area.y_max; y += kStep)
+      for (double x = ball_area.x_min; x <= ball_area.x_max; x += kStep) {
+        const auto px = camera.fieldToImage({x, y, ref_height});
+        if (!px || px->u < 0 || px->v < 0 || px->u > c.image_width - 1 || px->v > c.image_height - 1) continue;
+        double dir[2];
+        if (viewStretch(camera, {x, y}, ref_height, dir) >= kMinStretch) return true;
+      }
+    return false;
   }
 
   // Weak peaks for the side blobs a center's pattern lacks (weak_sides.h):
