@@ -1200,8 +1200,8 @@ struct Detector::Impl {
       // The league's protocol has no unknown id, and a wrong one counts as
       // a false robot and a missed one: a guessed id is not reported.
       if (!r.id_known && !opt.report_guessed_ids) continue;
-      // One of four ids (two side blobs outside the image) is no guess
-      // worth reporting; a track or the teammates must tell it.
+      // A robot cut by the image border (two side blobs) is reported only
+      // with a known id: the frame, a track or the teammates must tell it.
       if (!r.id_known && r.n < kPatternSlots - 1) continue;
       RobotDetection d;
       d.team = r.team;

@@ -11,7 +11,8 @@
 //     no two robots overlapping by the rule shape;
 //  3. position based color classes: k-means (k = 2) for yellow/blue centers
 //     and green/pink sides with the separation test eq. 5.24, per-robot local
-//     side colors, retention/reference forces eq. 5.25;
+//     side colors, retention/reference forces eq. 5.25; a side slot without
+//     a blob takes the marker color the frame shows there (seen_color.h);
 //  4. tracking (§5.3.6): robots missing blobs are recovered from the
 //     predicted pose with two or more blobs; identities change only after
 //     several frames of agreeing contrary evidence; a frame that shares under
@@ -81,8 +82,9 @@ struct DetectorOptions {
   // found (ranked at half its score); its id is then a guess (the missing
   // blob is taken as green) unless a track knows it.
   int min_side_blobs = 3;
-  // Whether such a robot is reported when its id stays a guess (no track
-  // saw it whole, and no fully seen teammate rules one of the two ids out).
+  // Whether such a robot is reported when its id stays a guess (the frame
+  // shows no clear color at the missing slot, no track saw it whole, and no
+  // fully seen teammate rules one of the two ids out).
   // The protocol has no unknown id and a wrong one is a false robot: such
   // guesses were right 7 of 14 times over the scene sweep, 3 of 6 in the
   // side view, 33 of 42 in the 1224 x 1024 presets (7 of 7 under a blue
