@@ -38,7 +38,7 @@ TEST(DetectionSeenColor, SideViewDotsShowTheirMarker) {
         if (seen.share < opt.min_probe_share) continue;
         ++read;
         const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
-                                        static_cast<float>(opt.probe_color_margin));
+                                        static_cast<float>(opt.weak_color_margin));
         EXPECT_EQ(label, colors[s - 1] == MarkerColor::Pink ? 1 : 0) << "robot " << t.robot_id() << " slot " << s;
       }
     }

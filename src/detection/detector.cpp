@@ -699,7 +699,7 @@ struct Detector::Impl {
       const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
       if (seen.share < opt.min_probe_share) continue;
       const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
-                                      static_cast<float>(opt.probe_color_margin));
+                                      static_cast<float>(opt.weak_color_margin));
       if (label < 0) continue;
       colors[s - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
       r.seen_sides |= static_cast<uint8_t>(1u << (s - 1));
@@ -1253,8 +1253,6 @@ void validateDetectorOptions(const DetectorOptions& o, const CameraModel& camera
   positive(o.probe_radius, "probe_radius");
   if (!(o.min_probe_share > 0 && o.min_probe_share <= 1))
     fail("min_probe_share must be in (0, 1], got " + std::to_string(o.min_probe_share));
-  if (!(o.probe_color_margin > 0 && o.probe_color_margin < 1))
-    fail("probe_color_margin must be in (0, 1), got " + std::to_string(o.probe_color_margin));
   if (o.min_side_blobs < 3 || o.min_side_blobs > 4)
     fail("min_side_blobs must be 3 or 4, got " + std::to_string(o.min_side_blobs));
   if (o.identity_switch_frames < 1)

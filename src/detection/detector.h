@@ -103,8 +103,9 @@ struct DetectorOptions {
   bool weak_sides = true;
   double weak_side_tolerance = 10;  // mm
   double min_weak_fit = 0.5;        // all five blobs within 10 mm of the fit
-  // A weak side's marker color counts only when its distance to the nearer
-  // side color is below this fraction of its distance to the other.
+  // A weak side's marker color (and one read from the frame, below) counts
+  // only when its distance to the nearer side color is below this fraction
+  // of its distance to the other.
   double weak_color_margin = 0.7;
 
   // --- side blobs that did not peak, read from the frame (seen_color.h) ---
@@ -112,13 +113,14 @@ struct DetectorOptions {
   // image border, or one or two pixels tall far away) takes the marker
   // color the camera saw there, when a frame is given to process(): the
   // mean color of a disc of probe_radius mm around the slot, over the part
-  // of it inside the image (at least min_probe_share of it), clearly nearer
-  // to the robot's own green or pink: its distance to the nearer below
-  // probe_color_margin times its distance to the other.
+  // of it inside the image (at least min_probe_share of it), when clearly
+  // nearer to the robot's own green or pink (weak_color_margin). On the
+  // side view's robots (1.3..7.1 m away) the nearer color's distance is at
+  // most 0.32 of the other's; in a sun patch (the sweep's
+  // light_gradient_patches) a pale pink dot read 0.59.
   bool probe_missing_sides = true;
   double probe_radius = 13;        // mm, inside a 20 mm dot with room for pose error
   double min_probe_share = 0.05;
-  double probe_color_margin = 0.5;
 
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color
