@@ -378,7 +378,8 @@ TEST_F(CliRun, ImageSequenceAt60FpsIsTrackedLikeTheSyntheticSource) {
     expectSameDetections(pa.detection(), pb.detection());
   }
   // And it is the scene: the robots and the ball found on these frames, with
-  // no false robot (69 of 72 with --no-guessed-ids).
+  // no false robot (72 of 72 also with --no-guessed-ids, as a missing side
+  // blob's color is read from the frame; 69 before).
   const CliResult e = cli("eval --truth " + path("frames/truth.jsonl") + " --detections " + path("seq.jsonl") +
                           " --json");
   ASSERT_EQ(e.code, 0) << e.err;

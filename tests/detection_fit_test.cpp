@@ -35,6 +35,30 @@ TEST(DetectionFit, RecoversPoseExactlyAndScoresOffsets) {
   EXPECT_LT(fitPattern(pts, slots, 5, 10).score, 0.1);
 }
 
+// Where a tilted camera stretches the field along its viewing ray, a blob
+// off its slot along the ray counts that much less; across it, as before.
+TEST(DetectionFit, ToleranceStretchedAlongTheViewingRay) {
+  FieldMm pts[5];
+  int slots[5] = {0, 1, 2, 3, 4};
+  for (int s = 0; s < 5; ++s) pts[s] = slotPosition({500, 200}, 0.4, s);
+  const double ray[2] = {0.6, 0.8};
+  FitTolerance tol{10, ray[0], ray[1], 2};
+  FieldMm along[5], across[5];
+  for (int s = 0; s < 5; ++s) along[s] = across[s] = pts[s];
+  along[3] = {pts[3].x + 25 * ray[0], pts[3].y + 25 * ray[1]};
+  across[3] = {pts[3].x - 12.5 * ray[1], pts[3].y + 12.5 * ray[0]};
+  // 25 mm along at stretch 2 scores as 12.5 mm off does when round (0.5,
+  // see above); across, the residuals the fit spreads over the other
+  // blobs are all that change.
+  EXPECT_NEAR(fitPattern(along, slots, 5, tol).score, 0.5, 0.05);
+  EXPECT_LT(fitPattern(along, slots, 5, 10).score, 0.25);
+  EXPECT_NEAR(fitPattern(across, slots, 5, tol).score, fitPattern(across, slots, 5, 10).score, 0.01);
+  EXPECT_LT(fitPattern(across, slots, 5, tol).score, 0.7);
+  // Stretch 1 is the plain score.
+  tol.stretch = 1;
+  EXPECT_EQ(fitPattern(along, slots, 5, tol).score, fitPattern(along, slots, 5, 10).score);
+}
+
 TEST(DetectionFit, WrongSlotOrderScoresBadly) {
   FieldMm pts[5];
   for (int s = 0; s < 5; ++s) pts[s] = slotPosition({0, 0}, 0.3, s);

@@ -108,7 +108,7 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) 
     const RenderedFrame frame = renderer.render(f, 0);
     ASSERT_TRUE(pipeline.process(frame.image, blobs)) << pipeline.lastError();
     if (alone) detector.reset();
-    detector.process(blobs, frame.truth.t_capture(), out);
+    detector.process(blobs, frame.truth.t_capture(), out, FrameView{&frame.image, popt.bayer});
 
     // Blobs near where a point at height z appears on the blob plane
     // (streak blobs only for balls: they are never part of a robot).

@@ -50,7 +50,7 @@ bool CameraProcessor::process(const Frame& frame, Detections& out, std::string& 
     detection_ms_ = 0;
     return false;
   }
-  detector_.process(blobs_, frame.t_capture, out);
+  detector_.process(blobs_, frame.t_capture, out, FrameView{&frame.image, pipeline_->options().bayer});
   detection_ms_ = msBetween(t1, Clock::now());
   return true;
 }

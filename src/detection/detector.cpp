@@ -12,6 +12,7 @@
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
 #include "detection/weak_sides.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 namespace {
@@ -143,6 +144,7 @@ struct Detector::Impl {
   Eigen::Vector3d cam_pos;
   double ref_height = 140;
   FieldRect ball_area;
+  bool stretched_view = false;  // some field point in view is stretched (fitToleranceAt)
 
   ColorClass classes[kNumClasses];
   ColorVec frame_color[kNumClasses];  // this frame's class colors
@@ -172,6 +174,7 @@ struct Detector::Impl {
       : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
     ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
     ball_area = field.withBoundary();
+    stretched_view = seesStretchedField();
     const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
                                          &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
                                          &opt.ref_white};
@@ -302,6 +305,7 @@ struct Detector::Impl {
           std::swap(ang[b], ang[b - 1]);
           std::swap(nbr[b], nbr[b - 1]);
         }
+      const FitTolerance tol = fitToleranceAt(cp);
       Hypothesis best;
       best.rank = -1;
       // Side blobs in increasing angle map to slots in increasing angle, up
@@ -319,7 +323,7 @@ struct Detector::Impl {
             h.slot[q + 1] = slots_sorted[(q + r) % m];
             pts[q + 1] = blobs[nbr[pick[q]]].at_ref;
           }
-          h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+          h.pose = fitPattern(pts, h.slot, h.n, tol);
           h.rank = h.pose.score * (m == 4 ? 1.0 : kFourBlobPenalty);
           if (h.pose.score >= opt.min_robot_score && h.rank > best.rank) best = h;
         }
@@ -349,6 +353,35 @@ struct Detector::Impl {
     }
   }
 
+  // How closely blobs around `p` (search plane) must fit the pattern: the
+  // score scale, stretched along the viewing ray where the camera sees the
+  // field at a grazing angle (view_stretch.h; from the same stretch on where
+  // the pixel stage whitens the gradient, so other views fit as before).
+  FitTolerance fitToleranceAt(const FieldMm& p) const {
+    FitTolerance t{opt.score_scale};
+    if (!stretched_view) return t;
+    double dir[2];
+    const double s = viewStretch(camera, p, ref_height, dir);
+    if (s >= kMinStretch) t.stretch = s, t.along_x = dir[0], t.along_y = -dir[1];
+    return t;
+  }
+
+  // Whether the camera sees any part of the field (plus boundary) stretched
+  // enough for fitToleranceAt to stretch its tolerance, on a 100 mm lattice;
+  // a camera looking down sees none, and skips the per-blob stretch.
+  bool seesStretchedField() const {
+    const auto& c = camera.calibration();
+    constexpr double kStep = 100;
+    for (double y = ball_area.y_min; y <= ball_area.y_max; y += kStep)
+      for (double x = ball_area.x_min; x <= ball_area.x_max; x += kStep) {
+        const auto px = camera.fieldToImage({x, y, ref_height});
+        if (!px || px->u < 0 || px->v < 0 || px->u > c.image_width - 1 || px->v > c.image_height - 1) continue;
+        double dir[2];
+        if (viewStretch(camera, {x, y}, ref_height, dir) >= kMinStretch) return true;
+      }
+    return false;
+  }
+
   // Weak peaks for the side blobs a center's pattern lacks (weak_sides.h):
   // the missing slot of its best three-side pattern; else the missing slots
   // of two side blobs that fit the pattern tightly with the center (three
@@ -358,6 +391,7 @@ struct Detector::Impl {
   void completeWithWeak(int c, const int* nbr, int k, Hypothesis& best) {
     const FieldMm cp = blobs[c].at_ref;
     if (weak_index.within(cp, opt.side_search_radius).empty()) return;
+    const FitTolerance tol = fitToleranceAt(cp);
     // The pattern of n blobs (slots given) at `pose`, with weak peaks in its
     // missing slots; at least `min_n` blobs in all.
     auto tryPattern = [&](const int* blob, const int* slot, int n, const PatternPose& pose, int min_n) {
@@ -365,7 +399,9 @@ struct Detector::Impl {
       for (int i = 0; i < n; ++i) filled |= 1u << slot[i];
       int found[kPatternSlots];
       double error[kPatternSlots];
-      const int n_weak = findWeakSlots(pose, filled, weak_index, opt.weak_side_tolerance, found, error);
+      FitTolerance weak_tol = tol;
+      weak_tol.mm = opt.weak_side_tolerance;
+      const int n_weak = findWeakSlots(pose, filled, weak_index, weak_tol, found, error);
       if (n_weak == 0 || n + n_weak < min_n) return;
       Hypothesis h;
       h.n = 0;
@@ -376,7 +412,7 @@ struct Detector::Impl {
         const int b = n_strong + found[s];
         h.blob[h.n] = b, h.slot[h.n] = s, pts[h.n++] = blobs[b].at_ref;
       }
-      h.pose = fitPattern(pts, h.slot, h.n, opt.score_scale);
+      h.pose = fitPattern(pts, h.slot, h.n, tol);
       if (h.pose.score < opt.min_weak_fit) return;
       h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kFourBlobPenalty) * (1 - kWeakSideRankStep * n_weak);
       if (h.rank > best.rank) best = h;
@@ -399,7 +435,7 @@ struct Detector::Impl {
       for (int sa = 1; sa < kPatternSlots; ++sa) {
         const int blob[2] = {c, nbr[a]}, slot[2] = {0, sa};
         const FieldMm pts[2] = {cp, pa};
-        tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, opt.score_scale), kPatternSlots);
+        tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, tol), kPatternSlots);
       }
     }
   }
@@ -450,6 +486,7 @@ struct Detector::Impl {
       return std::abs(dist(p, cp) - RobotPatternGeometry::kSideBlobDistance) <= kWeakPairRingTolerance;
     };
     auto angleAround = [&](const FieldMm& p) { return std::atan2(p.y - cp.y, p.x - cp.x); };
+    const FitTolerance tol = fitToleranceAt(cp);
     for (int a = 0; a < k; ++a) {
       const FieldMm pa = blobs[nbr[a]].at_ref;
       if (!onRing(pa)) continue;
@@ -463,7 +500,7 @@ struct Detector::Impl {
               continue;
             const int blob[3] = {c, nbr[a], nbr[b]}, slot[3] = {0, sa, sb};
             const FieldMm pts[3] = {cp, pa, pb};
-            const PatternPose pose = fitPattern(pts, slot, 3, opt.score_scale);
+            const PatternPose pose = fitPattern(pts, slot, 3, tol);
             if (pose.score >= opt.min_weak_fit) fn(blob, slot, pose);
           }
       }
@@ -606,6 +643,7 @@ struct Detector::Impl {
         colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
         r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
       }
+      if (r.seen_sides != 0xF) probeMissingSides(r, green, pink, colors);
       r.colors = colors;
       r.id = patternId(colors);
     }
@@ -644,6 +682,28 @@ struct Detector::Impl {
     for (int k : {kYellow, kBlue, kGreen, kPink})
       if (frame_seen[k]) ref[n] = classes[k].reference, seen[n] = frame_color[k], ++n;
     color_map.fit(ref, seen, n);
+  }
+
+  // The side slots of `r` that neither a blob nor a weak peak filled: the
+  // color the camera saw there (seen_color.h), when clearly nearer to the
+  // robot's own `green` or `pink`, sets the slot's marker.
+  void probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,
+                         std::array<MarkerColor, 4>& colors) const {
+    if (!opt.probe_missing_sides || !frame_view.image) return;
+    Hypothesis at_team = r;
+    refit(at_team);
+    const double z = teamHeight(r.team);
+    for (int s = 1; s < kPatternSlots; ++s) {
+      if (r.seen_sides >> (s - 1) & 1) continue;
+      const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+      const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
+      if (seen.share < opt.min_probe_share) continue;
+      const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
+                                      static_cast<float>(opt.weak_color_margin));
+      if (label < 0) continue;
+      colors[s - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides |= static_cast<uint8_t>(1u << (s - 1));
+    }
   }
 
   // Refit at the team's height (pattern offsets are mm on the robot top).
@@ -1107,7 +1167,10 @@ struct Detector::Impl {
   std::vector<FieldMm> raw_positions;
   double plane_height = 150;
 
-  void process(const BlobList& list, double t, Detections& out) {
+  FrameView frame_view;  // the frame being processed (may be empty)
+
+  void process(const BlobList& list, double t, Detections& out, const FrameView& frame) {
+    frame_view = frame;
     out.balls.clear();
     out.robots.clear();
     // Time going backwards or a long gap: the frames are unrelated.
@@ -1137,8 +1200,8 @@ struct Detector::Impl {
       // The league's protocol has no unknown id, and a wrong one counts as
       // a false robot and a missed one: a guessed id is not reported.
       if (!r.id_known && !opt.report_guessed_ids) continue;
-      // One of four ids (two side blobs outside the image) is no guess
-      // worth reporting; a track or the teammates must tell it.
+      // A robot cut by the image border (two side blobs) is reported only
+      // with a known id: the frame, a track or the teammates must tell it.
       if (!r.id_known && r.n < kPatternSlots - 1) continue;
       RobotDetection d;
       d.team = r.team;
@@ -1187,6 +1250,9 @@ void validateDetectorOptions(const DetectorOptions& o, const CameraModel& camera
          std::to_string(o.retention_force) + " and " + std::to_string(o.reference_force));
   if (!(o.min_robot_score >= 0 && o.min_robot_score < 1))
     fail("min_robot_score must be in [0, 1), got " + std::to_string(o.min_robot_score));
+  positive(o.probe_radius, "probe_radius");
+  if (!(o.min_probe_share > 0 && o.min_probe_share <= 1))
+    fail("min_probe_share must be in (0, 1], got " + std::to_string(o.min_probe_share));
   if (o.min_side_blobs < 3 || o.min_side_blobs > 4)
     fail("min_side_blobs must be 3 or 4, got " + std::to_string(o.min_side_blobs));
   if (o.identity_switch_frames < 1)
@@ -1208,8 +1274,8 @@ Detector& Detector::operator=(Detector&&) noexcept = default;
 
 void Detector::reset() { impl_->reset(); }
 
-void Detector::process(const BlobList& blobs, double t_capture, Detections& out) {
-  impl_->process(blobs, t_capture, out);
+void Detector::process(const BlobList& blobs, double t_capture, Detections& out, const FrameView& frame) {
+  impl_->process(blobs, t_capture, out, frame);
 }
 
 }  // namespace dv

@@ -11,7 +11,8 @@
 //     no two robots overlapping by the rule shape;
 //  3. position based color classes: k-means (k = 2) for yellow/blue centers
 //     and green/pink sides with the separation test eq. 5.24, per-robot local
-//     side colors, retention/reference forces eq. 5.25;
+//     side colors, retention/reference forces eq. 5.25; a side slot without
+//     a blob takes the marker color the frame shows there (seen_color.h);
 //  4. tracking (§5.3.6): robots missing blobs are recovered from the
 //     predicted pose with two or more blobs; identities change only after
 //     several frames of agreeing contrary evidence; a frame that shares under
@@ -30,6 +31,7 @@
 #include <vector>
 
 #include "core/units.h"
+#include "detection/seen_color.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "geometry/robot_pattern.h"
@@ -80,8 +82,9 @@ struct DetectorOptions {
   // found (ranked at half its score); its id is then a guess (the missing
   // blob is taken as green) unless a track knows it.
   int min_side_blobs = 3;
-  // Whether such a robot is reported when its id stays a guess (no track
-  // saw it whole, and no fully seen teammate rules one of the two ids out).
+  // Whether such a robot is reported when its id stays a guess (the frame
+  // shows no clear color at the missing slot, no track saw it whole, and no
+  // fully seen teammate rules one of the two ids out).
   // The protocol has no unknown id and a wrong one is a false robot: such
   // guesses were right 7 of 14 times over the scene sweep, 3 of 6 in the
   // side view, 33 of 42 in the 1224 x 1024 presets (7 of 7 under a blue
@@ -100,9 +103,24 @@ struct DetectorOptions {
   bool weak_sides = true;
   double weak_side_tolerance = 10;  // mm
   double min_weak_fit = 0.5;        // all five blobs within 10 mm of the fit
-  // A weak side's marker color counts only when its distance to the nearer
-  // side color is below this fraction of its distance to the other.
+  // A weak side's marker color (and one read from the frame, below) counts
+  // only when its distance to the nearer side color is below this fraction
+  // of its distance to the other.
   double weak_color_margin = 0.7;
+
+  // --- side blobs that did not peak, read from the frame (seen_color.h) ---
+  // A robot's side slot without a blob or a weak peak (its dot cut by the
+  // image border, or one or two pixels tall far away) takes the marker
+  // color the camera saw there, when a frame is given to process(): the
+  // mean color of a disc of probe_radius mm around the slot, over the part
+  // of it inside the image (at least min_probe_share of it), when clearly
+  // nearer to the robot's own green or pink (weak_color_margin). On the
+  // side view's robots (1.3..7.1 m away) the nearer color's distance is at
+  // most 0.32 of the other's; in a sun patch (the sweep's
+  // light_gradient_patches) a pale pink dot read 0.59.
+  bool probe_missing_sides = true;
+  double probe_radius = 13;        // mm, inside a 20 mm dot with room for pose error
+  double min_probe_share = 0.05;
 
   // --- color classes (§5.3.5) ---
   double retention_force = 0.7;  // f_p, pull to the previous class color
@@ -150,7 +168,10 @@ class Detector {
   void reset();
   // blobs: one frame's blobs on the plane blobs.plane_height; t_capture in
   // seconds. No allocation after warm-up (buffers are kept and reserved).
-  void process(const BlobList& blobs, double t_capture, Detections& out);
+  // `frame`: the image the blobs came from, for the colors of side slots
+  // that did not peak (probe_missing_sides); without it those stay unknown.
+  void process(const BlobList& blobs, double t_capture, Detections& out,
+               const FrameView& frame = {});
 
   const DetectorOptions& options() const { return opt_; }
 

@@ -70,6 +70,10 @@ FieldMm slotPosition(const FieldMm& position, double orientation, int slot) {
 }
 
 PatternPose fitPattern(const FieldMm* points, const int* slots, int n, double score_scale) {
+  return fitPattern(points, slots, n, FitTolerance{score_scale});
+}
+
+PatternPose fitPattern(const FieldMm* points, const int* slots, int n, const FitTolerance& tolerance) {
   PatternPose pose;
   if (n < 1) return pose;
   double qx = 0, qy = 0, bx = 0, by = 0;
@@ -95,7 +99,13 @@ PatternPose fitPattern(const FieldMm* points, const int* slots, int n, double sc
     const FieldMm o = patternOffset(slots[i]);
     const double ex = points[i].x - (pose.position.x + cs * o.x - sn * o.y);
     const double ey = points[i].y - (pose.position.y + sn * o.x + cs * o.y);
-    const double e2 = (ex * ex + ey * ey) / (score_scale * score_scale);
+    double e2 = ex * ex + ey * ey;
+    if (tolerance.stretch != 1) {
+      const double along = (ex * tolerance.along_x + ey * tolerance.along_y) / tolerance.stretch;
+      const double across = ey * tolerance.along_x - ex * tolerance.along_y;
+      e2 = along * along + across * across;
+    }
+    e2 /= tolerance.mm * tolerance.mm;
     score = std::min(score, 1 / (1 + e2));
   }
   pose.score = score;

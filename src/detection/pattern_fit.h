@@ -25,6 +25,17 @@ struct PatternPose {
 // both agree. `score_scale` in mm (10 in the thesis).
 PatternPose fitPattern(const FieldMm* points, const int* slots, int n, double score_scale);
 
+// The offset giving score 0.5, where a tilted camera sees the robot: a
+// pixel covers more field along the viewing ray than across it, so a far
+// blob's position is that much less certain along the ray. `mm` across the
+// ray, `stretch` times that along the unit direction (along_x, along_y).
+struct FitTolerance {
+  double mm = 10;
+  double along_x = 1, along_y = 0;
+  double stretch = 1;  // 1: round, the plain score
+};
+PatternPose fitPattern(const FieldMm* points, const int* slots, int n, const FitTolerance& tolerance);
+
 // Position of `slot` for a robot at `pose`.
 FieldMm slotPosition(const FieldMm& position, double orientation, int slot);
 

@@ -1,19 +1,26 @@
 #include "detection/weak_sides.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dv {
 
-int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, double tolerance,
+int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, const FitTolerance& tolerance,
                   int found[kPatternSlots], double error[kPatternSlots]) {
   int n = 0;
   for (int s = 0; s < kPatternSlots; ++s) {
     found[s] = -1;
-    error[s] = tolerance;
+    error[s] = tolerance.mm;
     if (filled >> s & 1) continue;
     const FieldMm at = slotPosition(pose.position, pose.orientation, s);
-    for (const auto& hit : weak.within(at, tolerance)) {
-      const double d = std::sqrt(hit.second);
+    for (const auto& hit : weak.within(at, tolerance.mm * std::max(1.0, tolerance.stretch))) {
+      double d = std::sqrt(hit.second);
+      if (tolerance.stretch != 1) {
+        const FieldMm& p = weak.points()[hit.first];
+        const double ex = p.x - at.x, ey = p.y - at.y;
+        const double along = (ex * tolerance.along_x + ey * tolerance.along_y) / tolerance.stretch;
+        d = std::hypot(along, ey * tolerance.along_x - ex * tolerance.along_y);
+      }
       if (d < error[s]) error[s] = d, found[s] = static_cast<int>(hit.first);
     }
     n += found[s] >= 0;

@@ -15,10 +15,12 @@
 namespace dv {
 
 // For each slot s (0..4) whose bit is clear in `filled`, the weak peak of
-// `weak` nearest to where `pose` puts the slot, if closer than `tolerance` mm
-// (index into weak.points(), else -1), and its distance. Returns how many
-// slots were found.
-int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, double tolerance,
+// `weak` nearest to where `pose` puts the slot, if closer than `tolerance`
+// (its mm, stretched along the viewing ray: the along-ray part of a
+// distance is divided by the stretch; pattern_fit.h) (index into
+// weak.points(), else -1), and that distance. Returns how many slots were
+// found.
+int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, const FitTolerance& tolerance,
                   int found[kPatternSlots], double error[kPatternSlots]);
 
 // The side marker a weak peak's color shows: 0 (like `green`), 1 (like

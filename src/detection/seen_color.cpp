@@ -1,0 +1,59 @@
+#include "detection/seen_color.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/bayer_full.h"
+
+namespace dv {
+namespace {
+
+// Co-sited RGB at image position (u, v): bilinear between the 2x2 windows'
+// samples around it (sample (x, y) describes pixel (x + 0.5, y + 0.5)).
+void rgbAt(const FrameView& frame, double u, double v, float rgb[3]) {
+  const cv::Mat& im = *frame.image;
+  if (frame.bayer == BayerPattern::None || im.type() == CV_8UC3) {
+    const int x = std::clamp(static_cast<int>(std::lround(u)), 0, im.cols - 1);
+    const int y = std::clamp(static_cast<int>(std::lround(v)), 0, im.rows - 1);
+    const cv::Vec3b p = im.at<cv::Vec3b>(y, x);
+    rgb[0] = p[2], rgb[1] = p[1], rgb[2] = p[0];
+    return;
+  }
+  const double sx = u - 0.5, sy = v - 0.5;
+  const int x = static_cast<int>(std::floor(sx)), y = static_cast<int>(std::floor(sy));
+  const float fx = static_cast<float>(sx - x), fy = static_cast<float>(sy - y);
+  float p[4][3];
+  for (int n = 0; n < 4; ++n) fullBayerRgbAt(im, frame.bayer, x + (n & 1), y + (n >> 1), p[n]);
+  const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  for (int c = 0; c < 3; ++c) rgb[c] = w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c];
+}
+
+}  // namespace
+
+SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+                        double radius) {
+  SeenColor out;
+  if (!frame.image || frame.image->empty()) return out;
+  const double w = frame.image->cols, h = frame.image->rows;
+  double sum[3] = {0, 0, 0};
+  int in_disc = 0, seen = 0;
+  const double step = 2 * radius / (kSeenColorSteps - 1);
+  for (int j = 0; j < kSeenColorSteps; ++j)
+    for (int i = 0; i < kSeenColorSteps; ++i) {
+      const double dx = -radius + i * step, dy = -radius + j * step;
+      if (dx * dx + dy * dy > radius * radius) continue;
+      ++in_disc;
+      const auto px = camera.fieldToImage({center.x + dx, center.y + dy, center.z});
+      if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) continue;
+      float c[3];
+      rgbAt(frame, px->u, px->v, c);
+      for (int k = 0; k < 3; ++k) sum[k] += c[k];
+      ++seen;
+    }
+  if (seen == 0) return out;
+  for (int k = 0; k < 3; ++k) out.rgb[k] = static_cast<float>(sum[k] / seen);
+  out.share = static_cast<double>(seen) / in_disc;
+  return out;
+}
+
+}  // namespace dv

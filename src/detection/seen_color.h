@@ -1,0 +1,37 @@
+#pragma once
+// What the camera saw at a place where the robot pattern predicts a side
+// blob that did not peak (at the image border, or far away where a dot is
+// one or two pixels tall): the mean color of the frame over the part of a
+// disc on the robot top that lies in the image. Read from the frame through
+// the camera model, so both pixel backends give the same color and the
+// footprint is where the camera saw the dot, not a disc on the rectified
+// grid.
+#include <opencv2/core.hpp>
+
+#include "core/units.h"
+#include "geometry/camera_model.h"
+#include "pipeline/pipeline_options.h"
+
+namespace dv {
+
+// The frame a blob list came from: the raw Bayer mosaic (CV_8UC1, read with
+// `bayer`) or the BGR image (CV_8UC3).
+struct FrameView {
+  const cv::Mat* image = nullptr;
+  BayerPattern bayer = BayerPattern::RGGB;
+};
+
+struct SeenColor {
+  float rgb[3] = {0, 0, 0};
+  double share = 0;  // share of the disc inside the image, 0..1
+};
+
+// Lattice points across the disc.
+inline constexpr int kSeenColorSteps = 9;
+
+// Mean RGB (0..255) over the lattice points of the disc of `radius` mm
+// around `center` (on the plane z = center.z) that fall inside the image.
+SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+                        double radius);
+
+}  // namespace dv

@@ -1,0 +1,105 @@
+// Side slots that did not peak, read from the frame (detection/seen_color.h):
+// on rendered frames, the color the camera saw at a robot's slot tells its
+// marker, also where the dot is cut by the image border or a few pixels
+// tall; the detector takes it for a side blob the blob list lacks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "detection/color_classes.h"
+#include "detection/detector.h"
+#include "detection/seen_color.h"
+#include "detection/weak_sides.h"
+#include "scene_scoring.h"
+
+namespace dv {
+namespace {
+
+ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
+
+// Every side dot of the side view's robots (1.3..7 m away, the far ones
+// 2 pixels tall), read where the truth puts it: clearly nearer to the
+// reference pink or green it is, wherever a part of it is in the image.
+TEST(DetectionSeenColor, SideViewDotsShowTheirMarker) {
+  const SceneSpec spec = presetScene("side_view");
+  Renderer renderer(spec);
+  const CameraModel cam(spec.cameras[0].calib);
+  const RenderedFrame frame = renderer.render(0, 0);
+  const FrameView view{&frame.image, test::pipelineBayer(spec)};
+  const DetectorOptions opt;
+  const ColorVec green = feature(opt.ref_green), pink = feature(opt.ref_pink);
+  int read = 0;
+  for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
+    for (const auto& t : *list) {
+      const auto colors = patternColors(static_cast<int>(t.robot_id()));
+      for (int s = 1; s <= 4; ++s) {
+        const FieldMm p = slotPosition({t.x(), t.y()}, t.orientation(), s);
+        const SeenColor seen = seenDiscColor(view, cam, {p.x, p.y, t.height()}, opt.probe_radius);
+        if (seen.share < opt.min_probe_share) continue;
+        ++read;
+        const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
+                                        static_cast<float>(opt.weak_color_margin));
+        EXPECT_EQ(label, colors[s - 1] == MarkerColor::Pink ? 1 : 0) << "robot " << t.robot_id() << " slot " << s;
+      }
+    }
+  EXPECT_GE(read, 36);
+  // Outside the image nothing is seen.
+  EXPECT_EQ(seenDiscColor(view, cam, {-1200, -3600, 140}, 13).share, 0);
+}
+
+// A robot whose side blob is taken out of the blob list (and every weak peak
+// near it): with the frame the detector reads the slot and reports the
+// right id even when guessed ids are not; without it the id is one of two.
+TEST(DetectionSeenColor, MissingSideBlobReadFromTheFrame) {
+  SceneSpec spec = presetScene("top_down_div_b_half");
+  test::halveResolution(spec);
+  spec.robots = placeRandomRobots(spec, 0, 4, 4, 7, 200, 30);
+  Renderer renderer(spec);
+  const CameraModel cam(spec.cameras[0].calib);
+  PipelineOptions popt;
+  popt.bayer = test::pipelineBayer(spec);
+  CpuPipeline pipeline(cam, spec.field, popt);
+  const RenderedFrame frame = renderer.render(0, 0);
+  BlobList blobs;
+  ASSERT_TRUE(pipeline.process(frame.image, blobs));
+  // Take out one side blob of every robot, a different slot each.
+  const Eigen::Vector3d c = cam.position();
+  auto remove = [&](std::vector<Blob>& list, const FieldMm& p) {
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](const Blob& b) { return std::hypot(b.position.x - p.x, b.position.y - p.y) < 15; }),
+               list.end());
+  };
+  int k = 0;
+  for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
+    for (const auto& t : *list) {
+      const FieldMm q = slotPosition({t.x(), t.y()}, t.orientation(), 1 + k++ % 4);
+      const double s = (c.z() - blobs.plane_height) / (c.z() - t.height());
+      const FieldMm on_plane{c.x() + s * (q.x - c.x()), c.y() + s * (q.y - c.y())};
+      remove(blobs.blobs, on_plane);
+      remove(blobs.weak, on_plane);
+    }
+  DetectorOptions opt;
+  opt.tracking = false;
+  opt.report_guessed_ids = false;
+  for (bool with_frame : {true, false}) {
+    SCOPED_TRACE(with_frame ? "with the frame" : "blobs only");
+    Detector det(cam, spec.field, opt);
+    Detections out;
+    det.process(blobs, 0, out, with_frame ? FrameView{&frame.image, popt.bayer} : FrameView{});
+    int right = 0;
+    for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
+      for (const auto& t : *list)
+        for (const auto& r : out.robots)
+          if (std::hypot(r.position.x - t.x(), r.position.y - t.y()) < 20) {
+            EXPECT_EQ(r.id, static_cast<int>(t.robot_id()));
+            EXPECT_EQ(r.team, list == &frame.truth.robots_yellow() ? Team::Yellow : Team::Blue);
+            ++right;
+          }
+    // Without the frame a teammate seen whole may still rule one id out.
+    if (with_frame) EXPECT_EQ(right, 8);
+    else EXPECT_LT(right, 8);
+  }
+}
+
+}  // namespace
+}  // namespace dv
