@@ -3,10 +3,11 @@
 // carpets, pattern and robot-top colors, camera height, tilt, yaw, lens,
 // exposure, white balance, noise, vignetting, light gradients, crowded
 // robots, the ball beside, in front of and partly under robots and on lines,
-// the Division A field, RGB input and all four Bayer layouts. Every condition
-// runs with the shipped defaults at 1224 x 1024 (one placement, the CI
-// variant); DV_SCENE_FULL=1 runs 4 placements each at 1224 x 1024 and at
-// 2448 x 2048 and prints one table row per condition and resolution.
+// the Division A field, RGB input (also through JPEG) and all four Bayer
+// layouts. Every condition runs with the shipped defaults at 1224 x 1024
+// (one placement, the CI variant); DV_SCENE_FULL=1 runs 4 placements each
+// at 1224 x 1024 and at 2448 x 2048 and prints one table row per condition
+// and resolution.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -211,6 +212,9 @@ const std::vector<Condition>& conditions() {
          s.ball.position = {-4000, -1500, 21.5};
        }},
       {"rgb_input", [](SceneSpec& s, int) { s.bayer = false; }},
+      // A camera streaming JPEG: chroma at half resolution, 8x8 blocks.
+      {"jpeg_q90", [](SceneSpec& s, int) { s.bayer = false, s.jpeg_quality = 90; }},
+      {"jpeg_q60", [](SceneSpec& s, int) { s.bayer = false, s.jpeg_quality = 60; }},
       {"bayer_grbg", [](SceneSpec& s, int) { s.bayer_layout = BayerLayout::GRBG; }},
       {"bayer_gbrg", [](SceneSpec& s, int) { s.bayer_layout = BayerLayout::GBRG; }},
       {"bayer_bggr", [](SceneSpec& s, int) { s.bayer_layout = BayerLayout::BGGR; }},

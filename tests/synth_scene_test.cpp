@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "core/error.h"
@@ -332,6 +333,32 @@ TEST(SynthScene, BayerKeyTakesALayoutOrABoolean) {
   EXPECT_THROW(sceneFromYaml(head + "bayer: rgbg\n", "t"), InputError);
   EXPECT_DOUBLE_EQ(sceneFromYaml(head + "lighting: {vignetting: 0.4}\n", "t").lighting.vignetting, 0.4);
   EXPECT_THROW(sceneFromYaml(head + "lighting: {vignetting: 1.5}\n", "t"), InputError);
+}
+
+// A camera that streams JPEG: the frame written is the JPEG file the
+// renderer's image was decoded from, so `run` on the folder reads exactly
+// the pixels the in-memory tests see; JPEG needs RGB frames.
+TEST(SynthScene, JpegFramesAreWrittenAsDecoded) {
+  const std::string head = "cameras: [{id: 0, position: [0, 0, 4000], look_at: [0, 0, 0], focal_length: 500, size: [64, 48]}]\n";
+  EXPECT_EQ(sceneFromYaml(head + "bayer: false\njpeg_quality: 75\n", "t").jpeg_quality, 75);
+  try {
+    sceneFromYaml(head + "jpeg_quality: 75\n", "t");
+    ADD_FAILURE() << "JPEG of a Bayer mosaic accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("set bayer: false"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(sceneFromYaml(head + "bayer: false\njpeg_quality: 101\n", "t"), InputError);
+
+  SceneSpec spec = sceneFromYaml(std::string(kMinimal) + "bayer: false\njpeg_quality: 60\n", "t");
+  const fs::path out = fs::path(writeTemp("jpeg_marker", "")).parent_path() / "jpeg_out";
+  writeScene(spec, out.string());
+  const cv::Mat read = cv::imread((out / "frame_3_00000.jpg").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(read.empty());
+  EXPECT_FALSE(fs::exists(out / "frame_3_00000.png"));
+  const cv::Mat decoded = Renderer(spec).render(0, 0).image;
+  EXPECT_EQ(cv::norm(read, decoded, cv::NORM_INF), 0);
+  spec.jpeg_quality = 0;
+  EXPECT_GT(cv::norm(Renderer(spec).render(0, 0).image, decoded, cv::NORM_INF), 0);
 }
 
 // Runs the CLI; returns its exit code and stderr.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "synth/carpet_texture.h"
@@ -620,6 +621,10 @@ Renderer::Renderer(const SceneSpec& spec) : spec_(spec) {
                                   " has no image size");
   if (spec_.antialias < 1) throw std::invalid_argument("antialias must be at least 1");
   if (!(spec_.fps > 0)) throw std::invalid_argument("fps must be positive");
+  if (spec_.jpeg_quality < 0 || spec_.jpeg_quality > 100)
+    throw std::invalid_argument("jpeg_quality must be 0 (off) to 100");
+  if (spec_.jpeg_quality > 0 && spec_.bayer)
+    throw std::invalid_argument("jpeg_quality needs RGB frames (bayer false)");
   impl_ = std::make_unique<Impl>(spec_);
 }
 
@@ -708,6 +713,10 @@ RenderedFrame Renderer::render(int frame, size_t camera_index) const {
     out.rgb = applySensor(copy, impl_->uneven[camera_index], rgb);
   }
   out.image = applySensor(radiance, impl_->uneven[camera_index], s);
+  if (!spec_.bayer && spec_.jpeg_quality > 0) {
+    cv::imencode(".jpg", out.image, out.jpeg, {cv::IMWRITE_JPEG_QUALITY, spec_.jpeg_quality});
+    out.image = cv::imdecode(out.jpeg, cv::IMREAD_COLOR);
+  }
   out.truth = truth(frame, camera_index);
   return out;
 }

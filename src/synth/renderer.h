@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dotvision/ssl_detection.pb.h"
 #include "geometry/geometry_io.h"
@@ -21,6 +22,8 @@ struct RenderedFrame {
   // CV_8UC3 BGR of the same exposure, filled only when spec.bayer and
   // spec.write_png are both set (image is then the Bayer mosaic).
   cv::Mat rgb;
+  // The JPEG file `image` was decoded from, when spec.jpeg_quality is set.
+  std::vector<uchar> jpeg;
   // What the camera sees, by construction: camera_id, frame_number (from 0),
   // t_capture = t_sent = frame / fps, robots and ball whose projected center
   // lies inside the image. Robots: x/y of the center blob, pixel_x/y its

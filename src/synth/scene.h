@@ -130,6 +130,9 @@ struct SceneSpec {
   bool bayer = true;            // write 8-bit Bayer PGM frames
   BayerLayout bayer_layout = BayerLayout::RGGB;
   bool write_png = false;       // write PNG RGB frames as well
+  // RGB frames (bayer false) pass through JPEG at this quality, as from a
+  // camera that streams JPEG (4:2:0 chroma, block artefacts); 0 = lossless.
+  int jpeg_quality = 0;
   int antialias = 2;            // samples per pixel axis
 };
 

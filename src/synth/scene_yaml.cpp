@@ -376,7 +376,7 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
               {"name", "seed", "field", "cameras", "robots", "random_robots", "ball",
                "random_motion", "materials", "lighting", "noise_sigma", "shot_noise",
                "lens_blur_px", "frames", "fps", "motion_blur", "motion_blur_samples", "bayer",
-               "png", "antialias"});
+               "png", "antialias", "jpeg_quality"});
   SceneSpec s;
   with(root, "name", [&](const YAML::Node& v) { s.name = r.text(v, "name"); });
   with(root, "seed", [&](const YAML::Node& v) { s.seed = r.seed(v, "seed"); });
@@ -428,6 +428,10 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
   });
   with(root, "png", [&](const YAML::Node& v) { s.write_png = r.boolean(v, "png"); });
   with(root, "antialias", [&](const YAML::Node& v) { s.antialias = r.integer(v, "antialias", 1, 8); });
+  with(root, "jpeg_quality", [&](const YAML::Node& v) {
+    s.jpeg_quality = r.integer(v, "jpeg_quality", 0, 100);
+    if (s.jpeg_quality > 0 && s.bayer) r.fail(v, "jpeg_quality: JPEG frames are RGB, set bayer: false");
+  });
 
   // Random content last: it depends on cameras, ball and explicit robots.
   // random_robots: one block or a list of blocks (e.g. one per camera).

@@ -44,7 +44,12 @@ void writeScene(const SceneSpec& spec, const std::string& out_dir) {
       const RenderedFrame f = renderer.render(frame, c);
       const uint32_t id = spec.cameras[c].calib.camera_id;
       if (spec.bayer) writeImage(frameName(out_dir, id, frame, "pgm"), f.image, out_dir);
-      if (spec.write_png || !spec.bayer)
+      if (!f.jpeg.empty()) {
+        const std::string path = frameName(out_dir, id, frame, "jpg");
+        std::ofstream jpg(path, std::ios::binary | std::ios::trunc);
+        jpg.write(reinterpret_cast<const char*>(f.jpeg.data()), static_cast<std::streamsize>(f.jpeg.size()));
+        if (!jpg) throw InputError(out_dir, "cannot write " + path);
+      } else if (spec.write_png || !spec.bayer)
         writeImage(frameName(out_dir, id, frame, "png"), spec.bayer ? f.rgb : f.image, out_dir);
       truth << toCanonicalJson(f.truth) << '\n';
     }
