@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/cpu_pipeline.h"
+#include "pipeline/score_windows.h"
+#include "synth/scene.h"
 #include "pipeline_test_scene.h"
 
 namespace dv {
@@ -138,6 +140,24 @@ TEST(PipelineGrid, TopDownExtentAndScale) {
   const GridPx back = g.toGrid(g.toField({12.25, 7.5}));
   EXPECT_NEAR(back.x, 12.25, 1e-9);
   EXPECT_NEAR(back.y, 7.5, 1e-9);
+}
+
+// An RGB frame carries no chroma finer than the Bayer mosaic it was made
+// from, so its grid is the mosaic's: 2 px apart for a camera whose 2x2 cells
+// serve (4 mm here, not the 2 mm of its pixels), a pixel apart for a camera
+// whose cells are coarse (the side view's far field).
+TEST(PipelineGrid, RgbFrameGetsItsMosaicsGrid) {
+  const auto cam = smallTopDown();
+  PipelineOptions rgb;
+  rgb.bayer = BayerPattern::None;
+  EXPECT_NEAR(checkedGrid(cam, FieldModel::divisionB(), rgb).scale, 4.0, 0.01);
+  EXPECT_NEAR(checkedGrid(cam, FieldModel::divisionB(), {}).scale, 4.0, 0.01);
+  const SceneSpec side = presetScene("side_view");
+  const CameraModel side_cam(side.cameras[0].calib);
+  PipelineOptions full;
+  full.bayer_sampling = BayerSampling::Full;
+  EXPECT_EQ(checkedGrid(side_cam, side.field, rgb).scale, checkedGrid(side_cam, side.field, full).scale);
+  EXPECT_LT(checkedGrid(side_cam, side.field, rgb).scale, kLowResolutionGridMm);
 }
 
 TEST(PipelineBlobs, IsolatedDiscsAreFoundOnceWithSubMillimetreError) {

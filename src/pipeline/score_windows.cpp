@@ -46,9 +46,16 @@ RectifiedGrid checkedGrid(const CameraModel& camera, const FieldModel& field, co
   if (w <= 0 || h <= 0) throw InputError(source, "calibration has no image size (pixel_image_width/height)");
   if (opt.bayer != BayerPattern::None && (w % 2 || h % 2 || w < 4 || h < 4))
     throw InputError(source, "Bayer image size " + std::to_string(w) + "x" + std::to_string(h) + " is not even");
+  // Grid spacing follows the color samples' spacing. An RGB frame is spaced
+  // like the same camera's Bayer mosaic under the automatic choice: nearly
+  // every color camera has a Bayer sensor, so its RGB frames carry no
+  // chroma finer than the mosaic's. A 2448 x 2048 RGB frame at 5 m gets the
+  // 5.6 mm grid of its mosaic instead of 2.8 mm (a quarter of the cells, the
+  // same recall), a grazing view keeps a grid per pixel.
   PipelineOptions resolved = opt;
-  if (opt.bayer != BayerPattern::None && opt.bayer_sampling == BayerSampling::Auto)
-    resolved.bayer_sampling = chooseBayerSampling(camera, field, opt).mode;
+  if (opt.bayer == BayerPattern::None) resolved.bayer = BayerPattern::RGGB, resolved.bayer_sampling = BayerSampling::Auto;
+  if (resolved.bayer_sampling == BayerSampling::Auto)
+    resolved.bayer_sampling = chooseBayerSampling(camera, field, resolved).mode;
   auto g = computeRectifiedGrid(camera, field, opt.plane_height, sampleLattice(resolved).step);
   if (!g)
     throw InputError(source, "camera sees no part of the field at plane height " +
