@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
 
 #if defined(__x86_64__)
@@ -56,8 +57,9 @@ __attribute__((target("avx2"))) int coarsePairsAvx2(const float* a, const float*
 
 }  // namespace
 
-void streakCoarseRows(const float* ca, const float* cb, int width, const StreakWindows& w, float* coarse,
-                      int cy_begin, int cy_end) {
+__attribute__((target_clones("avx2", "default"))) void streakCoarseRows(const float* ca, const float* cb, int width,
+                                                                         const StreakWindows& w, float* coarse,
+                                                                         int cy_begin, int cy_end) {
   const int f = w.factor, cw = w.coarse_width;
   const float norm = 1.0f / static_cast<float>(f);
   const size_t gw = width;
