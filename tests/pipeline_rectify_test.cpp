@@ -169,7 +169,7 @@ TEST(PipelineBands, MosaicToScoreBandByBandGivesTheWholePlaneScore) {
     std::vector<const float*> planes;
     std::vector<std::unique_ptr<CpuPipeline>> pipelines;
     std::vector<BlobList> blobs;
-    for (int threads : {1, 3}) {  // 4 and 12 bands
+    for (int threads : {1, 3}) {  // 8 and 12 bands
       opt.threads = threads;
       pipelines.push_back(std::make_unique<CpuPipeline>(c.cam, FieldModel::divisionB(), opt));
       blobs.emplace_back();

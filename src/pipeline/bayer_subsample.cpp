@@ -131,30 +131,46 @@ __attribute__((target("avx2"))) inline __m256i chroma8(__m256i rg, __m256i b1, _
   return _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(rg, k01), _mm256_madd_epi16(b1, k2r)), 4);
 }
 
+// Samples at..at+15 of chromaRow's interior.
+template <int RX, int BX>
+__attribute__((target("avx2"))) inline void chroma16(const uint8_t* r_row, const uint8_t* r_nrow,
+                                                     const uint8_t* b_row, const uint8_t* b_nrow,
+                                                     const uint8_t* g_row1, int at, __m256i ka01, __m256i ka2r,
+                                                     __m256i kb01, __m256i kb2r, uint32_t* out) {
+  constexpr int rs = RX == 0 ? 2 : -2;
+  constexpr int bs = BX == 0 ? 2 : -2;
+  const __m256i one = _mm256_set1_epi16(1);
+  const __m256i r = shifted16<RX, rs>(r_row + 2 * at, r_nrow + 2 * at);
+  const __m256i b = shifted16<BX, bs>(b_row + 2 * at, b_nrow + 2 * at);
+  const __m256i g = _mm256_avg_epu16(sites<1 - RX>(r_row + 2 * at), sites<RX>(g_row1 + 2 * at));
+  const __m256i rg_lo = _mm256_unpacklo_epi16(r, g), rg_hi = _mm256_unpackhi_epi16(r, g);
+  const __m256i b_lo = _mm256_unpacklo_epi16(b, one), b_hi = _mm256_unpackhi_epi16(b, one);
+  const __m256i lo = _mm256_blend_epi16(chroma8(rg_lo, b_lo, ka01, ka2r),
+                                        _mm256_slli_epi32(chroma8(rg_lo, b_lo, kb01, kb2r), 16), 0xaa);
+  const __m256i hi = _mm256_blend_epi16(chroma8(rg_hi, b_hi, ka01, ka2r),
+                                        _mm256_slli_epi32(chroma8(rg_hi, b_hi, kb01, kb2r), 16), 0xaa);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + at), _mm256_permute2x128_si256(lo, hi, 0x20));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + at + 8), _mm256_permute2x128_si256(lo, hi, 0x31));
+}
+
 // The interior loop of chromaRow, 16 samples at a time, the same integer
-// arithmetic. Returns the first sample it did not do.
+// arithmetic. A remainder of fewer than 16 samples is done by one more step
+// that ends at i_end, overlapping the last (it writes the same values), so
+// no sample is left to the scalar loop unless the run is shorter than 16.
+// Returns the first sample it did not do.
 template <int RX, int BX>
 __attribute__((target("avx2"))) int chromaRowAvx2(const uint8_t* r_row, const uint8_t* r_nrow,
                                                   const uint8_t* b_row, const uint8_t* b_nrow,
                                                   const uint8_t* g_row1, int i, int i_end,
                                                   const ChromaFixed& k, uint32_t* out) {
-  constexpr int rs = RX == 0 ? 2 : -2;
-  constexpr int bs = BX == 0 ? 2 : -2;
   const __m256i ka01 = pair(k.a[0], k.a[1]), ka2r = pair(k.a[2], 8);
   const __m256i kb01 = pair(k.b[0], k.b[1]), kb2r = pair(k.b[2], 8);
-  const __m256i one = _mm256_set1_epi16(1);
-  for (; i + 16 <= i_end; i += 16) {
-    const __m256i r = shifted16<RX, rs>(r_row + 2 * i, r_nrow + 2 * i);
-    const __m256i b = shifted16<BX, bs>(b_row + 2 * i, b_nrow + 2 * i);
-    const __m256i g = _mm256_avg_epu16(sites<1 - RX>(r_row + 2 * i), sites<RX>(g_row1 + 2 * i));
-    const __m256i rg_lo = _mm256_unpacklo_epi16(r, g), rg_hi = _mm256_unpackhi_epi16(r, g);
-    const __m256i b_lo = _mm256_unpacklo_epi16(b, one), b_hi = _mm256_unpackhi_epi16(b, one);
-    const __m256i lo = _mm256_blend_epi16(chroma8(rg_lo, b_lo, ka01, ka2r),
-                                          _mm256_slli_epi32(chroma8(rg_lo, b_lo, kb01, kb2r), 16), 0xaa);
-    const __m256i hi = _mm256_blend_epi16(chroma8(rg_hi, b_hi, ka01, ka2r),
-                                          _mm256_slli_epi32(chroma8(rg_hi, b_hi, kb01, kb2r), 16), 0xaa);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), _mm256_permute2x128_si256(lo, hi, 0x20));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i + 8), _mm256_permute2x128_si256(lo, hi, 0x31));
+  const int first = i;
+  for (; i + 16 <= i_end; i += 16)
+    chroma16<RX, BX>(r_row, r_nrow, b_row, b_nrow, g_row1, i, ka01, ka2r, kb01, kb2r, out);
+  if (i < i_end && i_end - 16 >= first) {
+    chroma16<RX, BX>(r_row, r_nrow, b_row, b_nrow, g_row1, i_end - 16, ka01, ka2r, kb01, kb2r, out);
+    i = i_end;
   }
   return i;
 }

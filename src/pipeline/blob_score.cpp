@@ -35,11 +35,6 @@ __attribute__((target_clones("avx2", "default"))) void quadrantScoreRow(
   }
 }
 
-__attribute__((target_clones("avx2", "default"))) void addRow(const uint32_t* a, const uint32_t* b,
-                                                              int n, uint32_t* out) {
-  for (int x = 0; x < n; ++x) out[x] = a[x] + b[x];
-}
-
 inline float quadrantNorm(int r, int q) {
   // 4 G cells per table cell (2x2 box sums).
   return 1.0f / (4 * kGradientFixedPoint * (r * r - q * q));
@@ -119,11 +114,10 @@ void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, doubl
   // Column sums from table row t0 = first - r on (zero there), in a ring of
   // 2r + 1 rows: the band's own origin, so bands need nothing from each other.
   const int rows = 2 * r + 1;
-  // Ring rows, one table row, two G rows (G shares the 32-bit scratch).
-  scratch.resize(static_cast<size_t>(rows + 1) * stride + 2 * static_cast<size_t>(width));  // no-op after the first frame
+  // Ring rows, two G rows (G shares the 32-bit scratch).
+  scratch.resize(static_cast<size_t>(rows) * stride + 2 * static_cast<size_t>(width));  // no-op after the first frame
   auto ring = [&](int t) { return scratch.data() + static_cast<size_t>(t % rows) * stride; };
-  uint32_t* prefix = scratch.data() + static_cast<size_t>(rows) * stride;
-  int32_t* g_rows = reinterpret_cast<int32_t*>(prefix + stride);
+  int32_t* g_rows = reinterpret_cast<int32_t*>(scratch.data() + static_cast<size_t>(rows) * stride);
   auto g_row = [&](int y) { return g_rows + static_cast<size_t>(y & 1) * width; };
   const int t0 = first - r;
   std::memset(ring(t0), 0, sizeof(uint32_t) * stride);
@@ -131,8 +125,7 @@ void quadrantMinScoreFromRows(ChromaRowSource& src, int width, int height, doubl
   for (int t = t0 + 1; t <= last - 1 + r; ++t) {
     // Table row t: box row t - 1, i.e. G rows t - 1 and t (t < height - 1).
     gradientRow(src, width, height, scale, t, g_row(t), forms);
-    boxRowPrefix(g_row(t - 1), g_row(t), width, prefix);
-    addRow(ring(t - 1), prefix, static_cast<int>(stride), ring(t));
+    boxRowPrefixOnto(g_row(t - 1), g_row(t), width, ring(t - 1), ring(t));
     const int y = t - r;  // all of rows y - r .. y + r are now in the ring
     if (y >= first) {
       quadrantScoreRow(ring(y - r), ring(y - q), ring(y), ring(y + q), ring(y + r), width, r, q, norm,

@@ -36,6 +36,11 @@ namespace {
 // Bands per thread for the banded pass: a thread the OS delays holds up
 // little of the frame, and the rows rectified twice stay few.
 constexpr int kBandsPerThread = 4;
+// At least this many bands, whatever the threads: at 2448x2048 a band's
+// sample box is then about 1 MB at most (the level-2 cache of a core), where
+// four bands on one thread made boxes of 1.9 MB that spilled to memory
+// between the Bayer step and the rectification.
+constexpr int kMinBands = 8;
 // Blobs above which the weak-peak scan is shared out to the pool.
 constexpr size_t kWeakScanOnPoolAbove = 150;
 
@@ -145,7 +150,8 @@ struct CpuPipeline::Impl {
       // A few bands per thread, so that a thread the OS delays holds up
       // little; each band rectifies 2 * reach rows twice.
       const int reach = quadrant_r + static_cast<int>(std::floor(gradient_scale)) + 1;
-      bands = BandPlan::build(readTable(), transposed, kBandsPerThread * pool.size(), reach);
+      bands = BandPlan::build(readTable(), transposed, std::max(kMinBands, kBandsPerThread * pool.size()),
+                              reach);
       band_bayer_ms.assign(bands.bands.size(), 0);
     } else {
       packed.assign(static_cast<size_t>(table.src_width) * (transposed ? stride_t : table.src_height), 0);

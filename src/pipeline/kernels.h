@@ -90,6 +90,9 @@ void satRowPrefixRows(const int32_t* g, int width, int height, uint32_t* sat, in
 void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out);
 // The same from the two G rows of the box, r0 above r1.
 void boxRowPrefix(const int32_t* r0, const int32_t* r1, int width, uint32_t* out);
+// The same plus the table row above it (above[0..width]): the next row of
+// the summed-area table in one pass.
+void boxRowPrefixOnto(const int32_t* r0, const int32_t* r1, int width, const uint32_t* above, uint32_t* out);
 // Pass 2: column prefix over columns [x_begin, x_end) of the table.
 void satColumnPrefix(uint32_t* sat, int width, int height, int x_begin, int x_end);
 

@@ -85,6 +85,11 @@ int findPeakRows(const float* score, const uint8_t* mask, int width, int height,
     const float* dn = row + width;
     const uint8_t* m = mask + static_cast<size_t>(y) * width;
     const int x_end = width - margin;
+    // The mask is read only at peaks, too sparsely for the hardware to
+    // fetch it ahead, and is seldom in cache: ask for the next row's (the
+    // banded pass scans one row at a time, the next one a little later).
+    if (y + 1 < height - margin)
+      for (int x = margin & ~63; x < x_end; x += 64) __builtin_prefetch(m + width + x);
 #if defined(__x86_64__)
     const int n = cpuHasAvx2() ? avx2Peaks(row, up, dn, m, margin, x_end, threshold, y, out, count, capacity)
                                : scalarPeaks(row, up, dn, m, margin, x_end, threshold, y, out, count, capacity);

@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+#include "pipeline/kernels.h"
 #include "pipeline/score_windows.h"
 
 namespace dv {
@@ -22,6 +28,35 @@ std::vector<uint8_t> streakPeakMask(const uint8_t* valid, int grid_width, int gr
   return mask;
 }
 
+namespace {
+
+#if defined(__x86_64__)
+// Coarse cells [cx, cw) of a row for factor 2: pair sums (hadd adds the
+// first of each pair to the second, as the scalar loop does) interleaved
+// a, b, written with streaming stores (the row is read only after the pass,
+// by when it would have left the cache anyway, so its lines need not be
+// fetched first). out + 2 * cx must be 16-byte aligned.
+__attribute__((target("avx2"))) int coarsePairsAvx2(const float* a, const float* b, int cx, int cw, float norm,
+                                                   float* out) {
+  const __m256 k = _mm256_set1_ps(norm);
+  for (; cx + 8 <= cw; cx += 8) {
+    // Lanes: cells 0 1 4 5 | 2 3 6 7.
+    const __m256 sa = _mm256_mul_ps(_mm256_hadd_ps(_mm256_loadu_ps(a + 2 * cx), _mm256_loadu_ps(a + 2 * cx + 8)), k);
+    const __m256 sb = _mm256_mul_ps(_mm256_hadd_ps(_mm256_loadu_ps(b + 2 * cx), _mm256_loadu_ps(b + 2 * cx + 8)), k);
+    const __m256 lo = _mm256_unpacklo_ps(sa, sb);  // cells 0 1 | 2 3
+    const __m256 hi = _mm256_unpackhi_ps(sa, sb);  // cells 4 5 | 6 7
+    _mm_stream_ps(out + 2 * cx, _mm256_castps256_ps128(lo));
+    _mm_stream_ps(out + 2 * cx + 4, _mm256_extractf128_ps(lo, 1));
+    _mm_stream_ps(out + 2 * cx + 8, _mm256_castps256_ps128(hi));
+    _mm_stream_ps(out + 2 * cx + 12, _mm256_extractf128_ps(hi, 1));
+  }
+  _mm_sfence();  // out to other threads before the pool's job ends
+  return cx;
+}
+#endif
+
+}  // namespace
+
 __attribute__((target_clones("avx2", "default"))) void streakCoarseRows(const float* ca, const float* cb, int width,
                                                                          const StreakWindows& w, float* coarse,
                                                                          int cy_begin, int cy_end) {
@@ -34,14 +69,22 @@ __attribute__((target_clones("avx2", "default"))) void streakCoarseRows(const fl
     const float* a = ca + static_cast<size_t>(cy) * f * gw;
     const float* b = cb + static_cast<size_t>(cy) * f * gw;
     float* out = coarse + 2 * static_cast<size_t>(cy) * cw;
-    if (f == 2) {  // the usual case, in a loop the compiler vectorises
-      for (int cx = 0; cx < cw; ++cx) {
-        out[2 * cx] = (a[2 * cx] + a[2 * cx + 1]) * norm;
-        out[2 * cx + 1] = (b[2 * cx] + b[2 * cx + 1]) * norm;
+    int cx = 0;
+    if (f == 2) {  // the usual case
+      auto cell = [&](int x) {
+        out[2 * x] = (a[2 * x] + a[2 * x + 1]) * norm;
+        out[2 * x + 1] = (b[2 * x] + b[2 * x + 1]) * norm;
+      };
+#if defined(__x86_64__)
+      if (cpuHasAvx2()) {
+        for (; cx < cw && reinterpret_cast<uintptr_t>(out + 2 * cx) % 16; ++cx) cell(cx);
+        cx = coarsePairsAvx2(a, b, cx, cw, norm, out);
       }
+#endif
+      for (; cx < cw; ++cx) cell(cx);
       continue;
     }
-    for (int cx = 0; cx < cw; ++cx) {
+    for (; cx < cw; ++cx) {
       float sa = 0, sb = 0;
       for (int i = 0; i < f; ++i) sa += a[cx * f + i], sb += b[cx * f + i];
       out[2 * cx] = sa * norm;

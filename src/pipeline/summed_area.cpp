@@ -10,13 +10,14 @@ namespace dv {
 
 namespace {
 
-// Row prefix of the 2x2 box sums from x = x_begin on, continuing from acc.
+// Row prefix of the 2x2 box sums from x = x_begin on, continuing from acc,
+// plus the row `above` where one is given.
 uint32_t boxPrefixScalar(const int32_t* r0, const int32_t* r1, int x_begin, int width, uint32_t acc,
-                         uint32_t* out) {
+                         const uint32_t* above, uint32_t* out) {
   for (int x = x_begin; x + 1 < width; ++x) {
     acc += static_cast<uint32_t>(r0[x]) + static_cast<uint32_t>(r0[x + 1]) +
            static_cast<uint32_t>(r1[x]) + static_cast<uint32_t>(r1[x + 1]);
-    out[x + 1] = acc;
+    out[x + 1] = above ? above[x + 1] + acc : acc;
   }
   return acc;
 }
@@ -28,9 +29,11 @@ __attribute__((target("avx2"))) inline __m256i at(const int32_t* p) {
 
 // Eight cells at a time: box sums, then an in-register prefix (shifts within
 // each 128-bit half, then the low half's total into the high half) plus the
-// running total. Modular, so equal to the scalar loop bit for bit.
+// running total, which grows by the eight cells' total (not through the
+// stored prefix, so one step need not wait for the last). Modular, so equal
+// to the scalar loop bit for bit.
 __attribute__((target("avx2"))) void boxPrefixAvx2(const int32_t* r0, const int32_t* r1, int width,
-                                                   uint32_t* out) {
+                                                   const uint32_t* above, uint32_t* out) {
   __m256i carry = _mm256_setzero_si256();
   const __m256i last = _mm256_set1_epi32(7);
   int x = 0;
@@ -40,23 +43,35 @@ __attribute__((target("avx2"))) void boxPrefixAvx2(const int32_t* r0, const int3
     v = _mm256_add_epi32(v, _mm256_slli_si256(v, 4));
     v = _mm256_add_epi32(v, _mm256_slli_si256(v, 8));
     v = _mm256_add_epi32(v, _mm256_permute2x128_si256(_mm256_shuffle_epi32(v, 0xff), v, 0x08));
+    const __m256i total = _mm256_permutevar8x32_epi32(v, last);
     v = _mm256_add_epi32(v, carry);
+    if (above) v = _mm256_add_epi32(v, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(above + x + 1)));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x + 1), v);
-    carry = _mm256_permutevar8x32_epi32(v, last);
+    carry = _mm256_add_epi32(carry, total);
   }
   const uint32_t acc = static_cast<uint32_t>(_mm256_cvtsi256_si32(carry));
-  out[width] = boxPrefixScalar(r0, r1, x, width, acc, out);
+  const uint32_t end = boxPrefixScalar(r0, r1, x, width, acc, above, out);
+  out[width] = above ? above[width] + end : end;
 }
 #endif
+
+void boxPrefix(const int32_t* r0, const int32_t* r1, int width, const uint32_t* above, uint32_t* out) {
+  out[0] = above ? above[0] : 0;
+#if defined(__x86_64__)
+  if (cpuHasAvx2()) return boxPrefixAvx2(r0, r1, width, above, out);
+#endif
+  const uint32_t end = boxPrefixScalar(r0, r1, 0, width, 0, above, out);
+  out[width] = above ? above[width] + end : end;
+}
 
 }  // namespace
 
 void boxRowPrefix(const int32_t* r0, const int32_t* r1, int width, uint32_t* out) {
-  out[0] = 0;
-#if defined(__x86_64__)
-  if (cpuHasAvx2()) return boxPrefixAvx2(r0, r1, width, out);
-#endif
-  out[width] = boxPrefixScalar(r0, r1, 0, width, 0, out);
+  boxPrefix(r0, r1, width, nullptr, out);
+}
+
+void boxRowPrefixOnto(const int32_t* r0, const int32_t* r1, int width, const uint32_t* above, uint32_t* out) {
+  boxPrefix(r0, r1, width, above, out);
 }
 
 void satRowPrefixRow(const int32_t* g, int width, int height, int y, uint32_t* out) {
