@@ -495,13 +495,18 @@ struct Detector::Impl {
   // taken. Ranked below every pattern with three side blobs; an id left
   // open is a guess unless teammates or a track tell it.
   void completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best) {
+    // Reading the frame costs: only for a center that looks like a team
+    // color rather than a side color (a side blob is a center candidate too).
+    const ColorVec& cc = blobs[c].color;
+    const bool center_like = std::min(colorDistance(cc, classes[kYellow].color), colorDistance(cc, classes[kBlue].color)) <
+                             std::min(colorDistance(cc, classes[kGreen].color), colorDistance(cc, classes[kPink].color));
     // Whether the slots of `pose` other than slot[1], slot[2] are out of
     // view or show markers; `by_marker`: at least one shows a marker.
     auto othersShown = [&](const int* blob, const int* slot, const PatternPose& pose, int n_weak, bool& by_marker) {
       by_marker = false;
       for (int s = 1; s < kPatternSlots; ++s) {
         if (s == slot[1] || s == slot[2] || (n_weak == 0 && slotOutOfView(pose, s))) continue;
-        if (!slotShowsMarker(pose, s, blob[0])) return false;
+        if (!center_like || !slotShowsMarker(pose, s, blob[0])) return false;
         by_marker = true;
       }
       return true;
@@ -509,6 +514,8 @@ struct Detector::Impl {
     const FitTolerance tol = fitToleranceAt(blobs[c].at_ref);
     auto take = [&](const int* blob, const int* slot, const PatternPose& pose) {
       const int n_weak = blobs[blob[1]].weak + blobs[blob[2]].weak;
+      const double rank = pose.score * kFourBlobPenalty * kEdgeRankFactor * (1 - kWeakSideRankStep * n_weak);
+      if (rank <= best.rank) return;
       bool by_marker;
       if (!othersShown(blob, slot, pose, n_weak, by_marker)) return;
       if (by_marker && (slot[1] - slot[2]) % 2 == 0) {
@@ -524,8 +531,8 @@ struct Detector::Impl {
       h.n = 3;
       for (int i = 0; i < 3; ++i) h.blob[i] = blob[i], h.slot[i] = slot[i];
       h.pose = pose;
-      h.rank = pose.score * kFourBlobPenalty * kEdgeRankFactor * (1 - kWeakSideRankStep * n_weak);
-      if (h.rank > best.rank) best = h;
+      h.rank = rank;
+      best = h;
     };
     forSideBlobPairs(c, nbr, k, take);
     if (best.rank > 0 || weak_index.points().empty()) return;
