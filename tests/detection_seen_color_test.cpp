@@ -164,7 +164,10 @@ void removeNear(std::vector<Blob>& list, const FieldMm& p) {
 // slot is outside the image).
 TEST(DetectionSeenColor, TwoMissingSideBlobsReadFromTheFrame) {
   const auto [with_frame, blobs_only] = robotsRightAfter([](BlobList& blobs, const FieldMm* slot, int n) {
-    for (int k : {1 + n % 4, 1 + (n + 1 + n / 4) % 4}) removeNear(blobs.blobs, slot[k]), removeNear(blobs.weak, slot[k]);
+    for (int k : {1 + n % 4, 1 + (n + 1 + n / 4) % 4}) {  // adjacent pairs, then diagonal ones
+      removeNear(blobs.blobs, slot[k]);
+      removeNear(blobs.weak, slot[k]);
+    }
   });
   EXPECT_EQ(with_frame, 8);
   EXPECT_EQ(blobs_only, 0);

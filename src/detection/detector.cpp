@@ -40,6 +40,11 @@ constexpr double kEdgeRankFactor = 0.6;
 // darker peaks lie on the robot top), a marker read from the frame where no
 // peak was found at least kMarkerBrightness.
 constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
+// A marker read from the frame is this much brighter than the carpet read
+// kCarpetProbeDistance mm from the robot's center (its rim is at 90 mm;
+// the default green marker is 1.7 times as bright as the carpet).
+constexpr float kOverCarpet = 1.25f;
+constexpr double kCarpetProbeDistance = 115;
 constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
@@ -468,13 +473,23 @@ struct Detector::Impl {
   // Whether the frame shows a side marker at `slot` of `pose` where no peak
   // was found: the color read there (seen_color.h), in full view, is at
   // least kMarkerBrightness as bright as the center blob `c` (a dark
-  // color's chromaticity is unreliable, and the robot top is dark) and
-  // clearly nearer to the green or the pink class than to the other.
+  // color's chromaticity is unreliable, and the robot top is dark), at
+  // least kOverCarpet as bright as the carpet just beyond the robot's rim
+  // in the same direction (a green dot has the carpet's chromaticity; the
+  // slots of a pattern made of clutter lie on the carpet), and clearly
+  // nearer to the green or the pink class than to the other.
   bool slotShowsMarker(const PatternPose& pose, int slot, int c) const {
     if (!opt.probe_missing_sides || !frame_view.image) return false;
     const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
     const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, ref_height}, opt.probe_radius);
-    if (seen.share < 1 || seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * brightness(c)) return false;
+    if (seen.share < 1) return false;
+    const float bright = seen.rgb[0] + seen.rgb[1] + seen.rgb[2];
+    if (bright < kMarkerBrightness * brightness(c)) return false;
+    const double out = kCarpetProbeDistance / RobotPatternGeometry::kSideBlobDistance;
+    const FieldPoint beyond{pose.position.x + out * (p.x - pose.position.x),
+                            pose.position.y + out * (p.y - pose.position.y), 0};
+    const SeenColor carpet = seenDiscColor(frame_view, camera, beyond, opt.probe_radius);
+    if (carpet.share > 0 && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
     return weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), classes[kGreen].color,
                          classes[kPink].color, static_cast<float>(opt.weak_color_margin)) >= 0;
   }
@@ -497,9 +512,10 @@ struct Detector::Impl {
   void completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best) {
     // Reading the frame costs: only for a center that looks like a team
     // color rather than a side color (a side blob is a center candidate too).
-    const ColorVec& cc = blobs[c].color;
-    const bool center_like = std::min(colorDistance(cc, classes[kYellow].color), colorDistance(cc, classes[kBlue].color)) <
-                             std::min(colorDistance(cc, classes[kGreen].color), colorDistance(cc, classes[kPink].color));
+    auto nearer = [&](int a, int b) {
+      return std::min(colorDistance(blobs[c].color, classes[a].color), colorDistance(blobs[c].color, classes[b].color));
+    };
+    const bool center_like = nearer(kYellow, kBlue) < nearer(kGreen, kPink);
     // Whether the slots of `pose` other than slot[1], slot[2] are out of
     // view or show markers; `by_marker`: at least one shows a marker.
     auto othersShown = [&](const int* blob, const int* slot, const PatternPose& pose, int n_weak, bool& by_marker) {
@@ -543,7 +559,8 @@ struct Detector::Impl {
     for (const auto& hit : weak_index.within(blobs[c].at_ref, opt.side_search_radius)) {
       if (m == static_cast<int>(mixed.size())) break;
       const int w = n_strong + static_cast<int>(hit.first);
-      if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c)) mixed[m++] = w;
+      if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c))
+        mixed[m++] = w;
     }
     if (m == n_blobs) return;
     forSideBlobPairs(c, mixed.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
