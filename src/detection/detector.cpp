@@ -475,8 +475,9 @@ struct Detector::Impl {
   // least kMarkerBrightness as bright as the center blob `c` (a dark
   // color's chromaticity is unreliable, and the robot top is dark), at
   // least kOverCarpet as bright as the carpet just beyond the robot's rim
-  // in the same direction (a green dot has the carpet's chromaticity; the
-  // slots of a pattern made of clutter lie on the carpet), and clearly
+  // in the same direction where that reads as carpet rather than a line (a
+  // green dot has the carpet's chromaticity; the slots of a pattern made of
+  // clutter lie on the carpet), and clearly
   // nearer to the green or the pink class than to the other.
   bool slotShowsMarker(const PatternPose& pose, int slot, int c) const {
     if (!opt.probe_missing_sides || !frame_view.image) return false;
@@ -489,7 +490,10 @@ struct Detector::Impl {
     const FieldPoint beyond{pose.position.x + out * (p.x - pose.position.x),
                             pose.position.y + out * (p.y - pose.position.y), 0};
     const SeenColor carpet = seenDiscColor(frame_view, camera, beyond, opt.probe_radius);
-    if (carpet.share > 0 && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
+    const ColorVec carpet_color = colorFeature(carpet.rgb[0], carpet.rgb[1], carpet.rgb[2]);
+    const bool is_carpet = carpet.share > 0 && colorDistance(carpet_color, classes[kField].color) <
+                                                   colorDistance(carpet_color, classes[kWhite].color);
+    if (is_carpet && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
     return weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), classes[kGreen].color,
                          classes[kPink].color, static_cast<float>(opt.weak_color_margin)) >= 0;
   }
