@@ -95,12 +95,13 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   // pixels tall, takes the marker the frame shows there
   // (detection/seen_color.h): the 4 robots that had a guessed, wrong id and
   // one robot cut by the border now have the right one. Of the 2 lost before
-  // the two-side patterns, one was cut by the border with a side dot wholly
-  // outside the image (one of two ids, not reported); the one still lost is
-  // 7.1 m away, its dots 1.7-1.8 px tall: its two pink side dots make no
-  // peak (score -0.03), and the two green ones are a diagonal pair that fits
-  // two placements 90 degrees apart, at both of which the frame's color at
-  // the other two slots reads pink (one of two ids, so not taken).
+  // the two-side patterns (one is found now; which one was not checked): one
+  // cut by the border with a side dot wholly outside the image (one of two
+  // ids, not reported), and one 7.1 m away, its dots 1.7-1.8 px tall: its
+  // two pink side dots make no peak (score -0.03), and the two green ones
+  // are a diagonal pair that fits two placements 90 degrees apart, at both
+  // of which the frame's color at the other two slots reads pink (one of two
+  // ids, so not taken).
   const bool side = std::string(GetParam()) == "side_view";
   EXPECT_GE(s.recall(), side ? 0.95 : 0.97);
   EXPECT_GE(s.idAccuracy(), 0.99);
