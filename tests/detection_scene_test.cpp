@@ -81,24 +81,27 @@ TEST_P(HarshScenes, RobotsAndBallWithTheSameDefaults) {
   EXPECT_GE(s.detectableRecall(), 0.97);
   EXPECT_GE(s.detectableBallRecall(), 0.97);
   // The overall bar. The side view does not reach it for robots: recall
-  // 0.967 (58 of 60) over the 6 placements of DV_SCENE_FULL=1, every one
-  // with the right id, precision 1.000 (0.933 with 4 wrong ids before; 0.750
-  // before the whitened gradient and the border rules, 0.72 before weak
-  // peaks). Its far side blobs (4.8..7.1 m away, 2-4 pixels tall) are
-  // stretched along the viewing direction, at any angle on the grid; the
-  // gradient is whitened there (pipeline/view_stretch.h), and their
-  // positions, up to 15 mm off along the ray (a pixel there covers 17 mm
-  // of field along it, 4 mm across), fit with the tolerance stretched
-  // along the ray (pattern_fit.h; one more robot). A side slot with no
-  // peak, cut by the image border or one or two pixels tall, takes the
-  // marker the frame shows there (detection/seen_color.h): the 4 robots
-  // that had a guessed, wrong id and one robot cut by the border now have
-  // the right one. Of the 2 lost: one cut by the border with a side dot
-  // wholly outside the image (one of two ids, not reported), and one 7.1 m
-  // away whose dots are 1.7-1.8 px tall: its two pink side dots make no
-  // peak (score -0.03), and the two green ones are a diagonal pair that
-  // fits two placements 90 degrees apart, at both of which the frame's
-  // color at the other two slots reads pink (one of two ids).
+  // 0.983 (59 of 60) over the 6 placements of DV_SCENE_FULL=1, every one
+  // with the right id, precision 1.000 (recall 0.967 before a center and two
+  // side blobs could take markers read from the frame at the other two
+  // slots; 0.933 with 4 wrong ids before that; 0.750 before the whitened
+  // gradient and the border rules, 0.72 before weak peaks). Its far side
+  // blobs (4.8..7.1 m away, 2-4 pixels tall) are stretched along the viewing
+  // direction, at any angle on the grid; the gradient is whitened there
+  // (pipeline/view_stretch.h), and their positions, up to 15 mm off along
+  // the ray (a pixel there covers 17 mm of field along it, 4 mm across), fit
+  // with the tolerance stretched along the ray (pattern_fit.h; one more
+  // robot). A side slot with no peak, cut by the image border or one or two
+  // pixels tall, takes the marker the frame shows there
+  // (detection/seen_color.h): the 4 robots that had a guessed, wrong id and
+  // one robot cut by the border now have the right one. Of the 2 lost before
+  // the two-side patterns (one is found now; which one was not checked): one
+  // cut by the border with a side dot wholly outside the image (one of two
+  // ids, not reported), and one 7.1 m away, its dots 1.7-1.8 px tall: its
+  // two pink side dots make no peak (score -0.03), and the two green ones
+  // are a diagonal pair that fits two placements 90 degrees apart, at both
+  // of which the frame's color at the other two slots reads pink (one of two
+  // ids, so not taken).
   const bool side = std::string(GetParam()) == "side_view";
   EXPECT_GE(s.recall(), side ? 0.95 : 0.97);
   EXPECT_GE(s.idAccuracy(), 0.99);

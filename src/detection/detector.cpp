@@ -35,6 +35,16 @@ constexpr double kWeakPairAngleTolerance = 0.35;
 // pattern's rank; a side blob counts as outside when any point of its disc
 // is (the pixel stage takes peaks only where that disc is seen).
 constexpr double kEdgeRankFactor = 0.6;
+// Brightness (r + g + b) as a share of the center blob's: a side blob is
+// at least kTopBrightness (the markers are about as bright as the centers;
+// darker peaks lie on the robot top), a marker read from the frame where no
+// peak was found at least kMarkerBrightness.
+constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
+// A marker read from the frame is this much brighter than the carpet read
+// kCarpetProbeDistance mm from the robot's center (its rim is at 90 mm;
+// the default green marker is 1.7 times as bright as the carpet).
+constexpr float kOverCarpet = 1.25f;
+constexpr double kCarpetProbeDistance = 115;
 constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
@@ -55,6 +65,7 @@ struct FrameBlob {
   bool weak = false;  // a weak peak (BlobList::weak), listed after the blobs
   bool streak = false;  // a fast-ball candidate: never part of a robot
   int robot = -1;  // accepted robot using this blob
+  bool implausible_center = false;  // its robot was dropped for its center color
 };
 
 struct Hypothesis {
@@ -279,6 +290,9 @@ struct Detector::Impl {
       for (const auto& h : hits) {
         const int i = static_cast<int>(h.first);
         if (i == c || h.second < sq(kMinSideDistance)) continue;
+        // A peak much darker than the center is the robot top's (chroma
+        // ringing around the dots after JPEG), never a marker.
+        if (brightness(i) < kTopBrightness * brightness(c)) continue;
         if (k == static_cast<int>(nbr.size())) break;
         nbr[k] = i;
         dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
@@ -348,7 +362,7 @@ struct Detector::Impl {
               }
       }
       if (weak_on && !(best.rank > 0 && best.n == kPatternSlots)) completeWithWeak(c, nbr.data(), k, best);
-      if (best.rank <= 0) completeAtImageEdge(c, nbr.data(), k, best);
+      if (best.rank <= 0) completeFromTwoSides(c, nbr.data(), k, best);
       if (best.rank > 0) hyps.push_back(best);
     }
   }
@@ -456,22 +470,105 @@ struct Detector::Impl {
     return false;
   }
 
-  // A robot at the image border: a center blob and two side blobs that fit
-  // the pattern tightly, with the other two side blobs' slots not seen whole
-  // (slotOutOfView). Ranked below every pattern with three side blobs; its
-  // id is a guess unless teammates or a track tell it.
-  void completeAtImageEdge(int c, const int* nbr, int k, Hypothesis& best) {
-    forSideBlobPairs(c, nbr, k, [&](const int* blob, const int* slot, const PatternPose& pose) {
-      bool unseen = true;
-      for (int s = 1; s < kPatternSlots && unseen; ++s)
-        if (s != slot[1] && s != slot[2]) unseen = slotOutOfView(pose, s);
-      if (!unseen) return;
+  // Whether the frame shows a side marker at `slot` of `pose` where no peak
+  // was found: the color read there (seen_color.h), in full view, is at
+  // least kMarkerBrightness as bright as the center blob `c` (a dark
+  // color's chromaticity is unreliable, and the robot top is dark), at
+  // least kOverCarpet as bright as the carpet just beyond the robot's rim
+  // in the same direction where that reads as carpet rather than a line (a
+  // green dot has the carpet's chromaticity; the slots of a pattern made of
+  // clutter lie on the carpet), and clearly
+  // nearer to the green or the pink class than to the other.
+  bool slotShowsMarker(const PatternPose& pose, int slot, int c) const {
+    if (!opt.probe_missing_sides || !frame_view.image) return false;
+    const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
+    const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, ref_height}, opt.probe_radius);
+    if (seen.share < 1) return false;
+    const float bright = seen.rgb[0] + seen.rgb[1] + seen.rgb[2];
+    if (bright < kMarkerBrightness * brightness(c)) return false;
+    const double out = kCarpetProbeDistance / RobotPatternGeometry::kSideBlobDistance;
+    const FieldPoint beyond{pose.position.x + out * (p.x - pose.position.x),
+                            pose.position.y + out * (p.y - pose.position.y), 0};
+    const SeenColor carpet = seenDiscColor(frame_view, camera, beyond, opt.probe_radius);
+    const ColorVec carpet_color = colorFeature(carpet.rgb[0], carpet.rgb[1], carpet.rgb[2]);
+    const bool is_carpet = carpet.share > 0 && colorDistance(carpet_color, classes[kField].color) <
+                                                   colorDistance(carpet_color, classes[kWhite].color);
+    if (is_carpet && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
+    return weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), classes[kGreen].color,
+                         classes[kPink].color, static_cast<float>(opt.weak_color_margin)) >= 0;
+  }
+
+  // Brightness (r + g + b) of blob b.
+  float brightness(int b) const { return blobs[b].rgb[0] + blobs[b].rgb[1] + blobs[b].rgb[2]; }
+
+  // A center blob and two side blobs that fit the pattern tightly, where
+  // each of the other two slots is either not seen whole (slotOutOfView: a
+  // robot at the image border) or shows a marker that did not peak
+  // (slotShowsMarker: a dot whose blurred chroma runs into the carpet, as
+  // after JPEG's half-resolution chroma at 1224 x 1024). Where no such pair
+  // of blobs exists, a weak peak may stand for one of the two when both
+  // other slots show markers. A diagonal pair (front-left and back-right,
+  // or back-left and front-right: 155 degrees apart either way) fits both
+  // diagonals; where markers show at the other slots of both placements
+  // (far, blurred dots), the pose is one of two and the pattern is not
+  // taken. Ranked below every pattern with three side blobs; an id left
+  // open is a guess unless teammates or a track tell it.
+  void completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best) {
+    // Reading the frame costs: only for a center that looks like a team
+    // color rather than a side color (a side blob is a center candidate too).
+    auto nearer = [&](int a, int b) {
+      return std::min(colorDistance(blobs[c].color, classes[a].color), colorDistance(blobs[c].color, classes[b].color));
+    };
+    const bool center_like = nearer(kYellow, kBlue) < nearer(kGreen, kPink);
+    // Whether the slots of `pose` other than slot[1], slot[2] are out of
+    // view or show markers; `by_marker`: at least one shows a marker.
+    auto othersShown = [&](const int* blob, const int* slot, const PatternPose& pose, int n_weak, bool& by_marker) {
+      by_marker = false;
+      for (int s = 1; s < kPatternSlots; ++s) {
+        if (s == slot[1] || s == slot[2] || (n_weak == 0 && slotOutOfView(pose, s))) continue;
+        if (!center_like || !slotShowsMarker(pose, s, blob[0])) return false;
+        by_marker = true;
+      }
+      return true;
+    };
+    const FitTolerance tol = fitToleranceAt(blobs[c].at_ref);
+    auto take = [&](const int* blob, const int* slot, const PatternPose& pose) {
+      const int n_weak = blobs[blob[1]].weak + blobs[blob[2]].weak;
+      const double rank = pose.score * kFourBlobPenalty * kEdgeRankFactor * (1 - kWeakSideRankStep * n_weak);
+      if (rank <= best.rank) return;
+      bool by_marker;
+      if (!othersShown(blob, slot, pose, n_weak, by_marker)) return;
+      if (by_marker && (slot[1] - slot[2]) % 2 == 0) {
+        const int a = slot[1] % 4 + 1, b = slot[2] % 4 + 1;  // the other diagonal
+        for (const auto& alt : {std::array<int, 3>{0, a, b}, std::array<int, 3>{0, b, a}}) {
+          const FieldMm pts[3] = {blobs[blob[0]].at_ref, blobs[blob[1]].at_ref, blobs[blob[2]].at_ref};
+          const PatternPose other = fitPattern(pts, alt.data(), 3, tol);
+          bool unused;
+          if (other.score >= opt.min_weak_fit && othersShown(blob, alt.data(), other, n_weak, unused)) return;
+        }
+      }
       Hypothesis h;
       h.n = 3;
       for (int i = 0; i < 3; ++i) h.blob[i] = blob[i], h.slot[i] = slot[i];
       h.pose = pose;
-      h.rank = pose.score * kFourBlobPenalty * kEdgeRankFactor;
-      if (h.rank > best.rank) best = h;
+      h.rank = rank;
+      best = h;
+    };
+    forSideBlobPairs(c, nbr, k, take);
+    if (best.rank > 0 || weak_index.points().empty()) return;
+    std::array<int, 64> mixed;
+    int m = 0;
+    for (int i = 0; i < k; ++i) mixed[m++] = nbr[i];
+    const int n_blobs = m;
+    for (const auto& hit : weak_index.within(blobs[c].at_ref, opt.side_search_radius)) {
+      if (m == static_cast<int>(mixed.size())) break;
+      const int w = n_strong + static_cast<int>(hit.first);
+      if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c))
+        mixed[m++] = w;
+    }
+    if (m == n_blobs) return;
+    forSideBlobPairs(c, mixed.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
+      if (blobs[blob[1]].weak != blobs[blob[2]].weak) take(blob, slot, pose);
     });
   }
 
@@ -520,7 +617,9 @@ struct Detector::Impl {
     robots.clear();
     std::sort(hyps.begin(), hyps.end(),
               [](const Hypothesis& a, const Hypothesis& b) { return a.rank > b.rank; });
+    for (auto& b : blobs) b.robot = -1;
     for (const auto& h : hyps) {
+      if (blobs[h.blob[0]].implausible_center) continue;
       bool free = true;
       for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
       if (!free || overlapsAccepted(h.pose)) continue;
@@ -547,9 +646,12 @@ struct Detector::Impl {
     return twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
   }
 
-  void dropImplausibleCenters() {
+  // Drops the robots whose center looks like the field or a line more than
+  // like its team's color, marks those centers implausible, and returns how
+  // many were dropped.
+  int dropImplausibleCenters() {
     const int nr = static_cast<int>(robots.size());
-    if (nr == 0) return;
+    if (nr == 0) return 0;
     const auto res = clusterCenters();
     int kept = 0;
     for (int i = 0; i < nr; ++i) {
@@ -559,12 +661,14 @@ struct Detector::Impl {
                                   colorDistance(c, classes[kWhite].color));
       if (d_bg < d_team) {
         for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
+        blobs[robots[i].blob[0]].implausible_center = true;
         continue;
       }
       for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = kept;
       robots[kept++] = robots[i];
     }
     robots.resize(kept);
+    return nr - kept;
   }
 
   void learnClass(int a, int b, const TwoMeansResult& r) {
@@ -1184,8 +1288,14 @@ struct Detector::Impl {
     for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
     prepare(list);
     findHypotheses();
+    // A hypothesis around a side blob taken for a center can hold a real
+    // robot's blobs until its center is found implausible; the robots it
+    // blocked get a second chance.
     selectRobots();
-    dropImplausibleCenters();
+    if (dropImplausibleCenters() > 0) {
+      selectRobots();
+      dropImplausibleCenters();
+    }
     classifyRobots();
     for (auto& r : robots) {
       if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
