@@ -49,66 +49,17 @@ TEST(DetectionSeenColor, SideViewDotsShowTheirMarker) {
   EXPECT_EQ(seenDiscColor(view, cam, {-1200, -3600, 140}, 13).share, 0);
 }
 
-// A robot whose side blob is taken out of the blob list (and every weak peak
-// near it): with the frame the detector reads the slot and reports the
-// right id even when guessed ids are not; without it the id is one of two.
-TEST(DetectionSeenColor, MissingSideBlobReadFromTheFrame) {
-  SceneSpec spec = presetScene("top_down_div_b_half");
-  test::halveResolution(spec);
-  spec.robots = placeRandomRobots(spec, 0, 4, 4, 7, 200, 30);
-  Renderer renderer(spec);
-  const CameraModel cam(spec.cameras[0].calib);
-  PipelineOptions popt;
-  popt.bayer = test::pipelineBayer(spec);
-  CpuPipeline pipeline(cam, spec.field, popt);
-  const RenderedFrame frame = renderer.render(0, 0);
-  BlobList blobs;
-  ASSERT_TRUE(pipeline.process(frame.image, blobs));
-  // Take out one side blob of every robot, a different slot each.
-  const Eigen::Vector3d c = cam.position();
-  auto remove = [&](std::vector<Blob>& list, const FieldMm& p) {
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [&](const Blob& b) { return std::hypot(b.position.x - p.x, b.position.y - p.y) < 15; }),
-               list.end());
-  };
-  int k = 0;
-  for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
-    for (const auto& t : *list) {
-      const FieldMm q = slotPosition({t.x(), t.y()}, t.orientation(), 1 + k++ % 4);
-      const double s = (c.z() - blobs.plane_height) / (c.z() - t.height());
-      const FieldMm on_plane{c.x() + s * (q.x - c.x()), c.y() + s * (q.y - c.y())};
-      remove(blobs.blobs, on_plane);
-      remove(blobs.weak, on_plane);
-    }
-  DetectorOptions opt;
-  opt.tracking = false;
-  opt.report_guessed_ids = false;
-  for (bool with_frame : {true, false}) {
-    SCOPED_TRACE(with_frame ? "with the frame" : "blobs only");
-    Detector det(cam, spec.field, opt);
-    Detections out;
-    det.process(blobs, 0, out, with_frame ? FrameView{&frame.image, popt.bayer} : FrameView{});
-    int right = 0;
-    for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
-      for (const auto& t : *list)
-        for (const auto& r : out.robots)
-          if (std::hypot(r.position.x - t.x(), r.position.y - t.y()) < 20) {
-            EXPECT_EQ(r.id, static_cast<int>(t.robot_id()));
-            EXPECT_EQ(r.team, list == &frame.truth.robots_yellow() ? Team::Yellow : Team::Blue);
-            ++right;
-          }
-    // Without the frame a teammate seen whole may still rule one id out.
-    if (with_frame) EXPECT_EQ(right, 8);
-    else EXPECT_LT(right, 8);
-  }
-}
-
 // The top-down half field at 1224 x 1024 with 4 + 4 robots, and a blob list
 // edited per robot by `edit(blobs, slot k of robot n on the blob plane, n)`;
 // how many robots the detector finds at their truth with the right team and
-// id (guessed ids not reported), with the frame and with blobs alone.
+// id (guessed ids not reported), with the frame and with blobs alone, and how
+// many it reports there with a wrong one.
+struct RobotsFound {
+  int right[2] = {0, 0}, wrong[2] = {0, 0};  // [0]: with the frame, [1]: blobs alone
+};
+
 template <class Edit>
-std::pair<int, int> robotsRightAfter(Edit&& edit) {
+RobotsFound robotsFoundAfter(Edit&& edit) {
   SceneSpec spec = presetScene("top_down_div_b_half");
   test::halveResolution(spec);
   spec.robots = placeRandomRobots(spec, 0, 4, 4, 7, 200, 30);
@@ -135,7 +86,7 @@ std::pair<int, int> robotsRightAfter(Edit&& edit) {
   DetectorOptions opt;
   opt.tracking = false;
   opt.report_guessed_ids = false;
-  int right[2] = {0, 0};
+  RobotsFound found;
   for (bool with_frame : {true, false}) {
     Detector det(cam, spec.field, opt);
     Detections out;
@@ -143,12 +94,13 @@ std::pair<int, int> robotsRightAfter(Edit&& edit) {
     for (const auto* list : {&frame.truth.robots_yellow(), &frame.truth.robots_blue()})
       for (const auto& t : *list)
         for (const auto& r : out.robots)
-          if (std::hypot(r.position.x - t.x(), r.position.y - t.y()) < 20 &&
-              r.id == static_cast<int>(t.robot_id()) &&
-              r.team == (list == &frame.truth.robots_yellow() ? Team::Yellow : Team::Blue))
-            ++right[with_frame ? 0 : 1];
+          if (std::hypot(r.position.x - t.x(), r.position.y - t.y()) < 20) {
+            const bool ok = r.id == static_cast<int>(t.robot_id()) &&
+                            r.team == (list == &frame.truth.robots_yellow() ? Team::Yellow : Team::Blue);
+            ++(ok ? found.right : found.wrong)[with_frame ? 0 : 1];
+          }
   }
-  return {right[0], right[1]};
+  return found;
 }
 
 void removeNear(std::vector<Blob>& list, const FieldMm& p) {
@@ -157,20 +109,35 @@ void removeNear(std::vector<Blob>& list, const FieldMm& p) {
              list.end());
 }
 
+// A robot whose side blob is taken out of the blob list (and every weak peak
+// near it): with the frame the detector reads the slot and reports the
+// right id even when guessed ids are not; without it the id is one of two
+// (a teammate seen whole may still rule one out).
+TEST(DetectionSeenColor, MissingSideBlobReadFromTheFrame) {
+  const RobotsFound f = robotsFoundAfter([](BlobList& blobs, const FieldMm* slot, int n) {
+    removeNear(blobs.blobs, slot[1 + n % 4]);
+    removeNear(blobs.weak, slot[1 + n % 4]);
+  });
+  EXPECT_EQ(f.right[0], 8);
+  EXPECT_LT(f.right[1], 8);
+  EXPECT_EQ(f.wrong[0], 0);
+  EXPECT_EQ(f.wrong[1], 0);
+}
+
 // Two side blobs of every robot taken out (as where JPEG's half-resolution
 // chroma runs a green dot into the carpet): the center and the two side
 // blobs left fix the pose, and the frame shows markers at the other two
 // slots, so every robot is found with its id; from blobs alone none is (no
 // slot is outside the image).
 TEST(DetectionSeenColor, TwoMissingSideBlobsReadFromTheFrame) {
-  const auto [with_frame, blobs_only] = robotsRightAfter([](BlobList& blobs, const FieldMm* slot, int n) {
+  const RobotsFound f = robotsFoundAfter([](BlobList& blobs, const FieldMm* slot, int n) {
     for (int k : {1 + n % 4, 1 + (n + 1 + n / 4) % 4}) {  // adjacent pairs, then diagonal ones
       removeNear(blobs.blobs, slot[k]);
       removeNear(blobs.weak, slot[k]);
     }
   });
-  EXPECT_EQ(with_frame, 8);
-  EXPECT_EQ(blobs_only, 0);
+  EXPECT_EQ(f.right[0], 8);
+  EXPECT_EQ(f.right[1], 0);
 }
 
 // A peak on the ring much darker than the center blob (JPEG's chroma
@@ -178,13 +145,13 @@ TEST(DetectionSeenColor, TwoMissingSideBlobsReadFromTheFrame) {
 // every robot turned that dark, the slot is read from the frame and every
 // id is right.
 TEST(DetectionSeenColor, DarkPeakIsNoMarker) {
-  const auto [with_frame, blobs_only] = robotsRightAfter([](BlobList& blobs, const FieldMm* slot, int n) {
+  const RobotsFound f = robotsFoundAfter([](BlobList& blobs, const FieldMm* slot, int n) {
     for (auto& b : blobs.blobs)
       if (std::hypot(b.position.x - slot[1 + n % 4].x, b.position.y - slot[1 + n % 4].y) < 15)
         b.rgb[0] = 25, b.rgb[1] = 45, b.rgb[2] = 30;
   });
-  EXPECT_EQ(with_frame, 8);
-  EXPECT_LT(blobs_only, 8);
+  EXPECT_EQ(f.right[0], 8);
+  EXPECT_LT(f.right[1], 8);
 }
 
 }  // namespace
