@@ -32,6 +32,7 @@ struct BenchArgs {
   std::optional<uint32_t> camera_id;
   std::string bayer = "rggb";
   std::string bayer_sampling = "auto";
+  bool full_search = false;
   int iterations = 100;
   int warmup = 5;
   int max_source_frames = 20;
@@ -80,6 +81,9 @@ CommandFn addBenchCommand(CLI::App& root) {
   cmd->add_option("--bayer", a->bayer, "Bayer layout of single-channel images")->default_str("rggb");
   cmd->add_option("--bayer-sampling", a->bayer_sampling, "Bayer mosaic sampling: auto|subsample|full")
       ->default_str("auto");
+  cmd->add_flag("--full-search", a->full_search,
+                "find blobs on the full grid everywhere (CPU; default: a coarse search on a grid of twice the "
+                "spacing where the grid is fine, each blob then placed on the full grid)");
   cmd->add_option("--iterations", a->iterations, "timed frames (default 100)")->check(CLI::PositiveNumber);
   cmd->add_option("--warmup", a->warmup, "untimed frames first (default 5)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-source-frames", a->max_source_frames,
@@ -102,6 +106,7 @@ CommandFn addBenchCommand(CLI::App& root) {
     options.backend.opencl_platform = a->opencl_platform;
     options.backend.opencl_device = a->opencl_device;
     options.pipeline.bayer_sampling = bayerSamplingFromName(a->bayer_sampling);
+    options.pipeline.coarse_search = !a->full_search;
     // Frames to cycle through, all of one camera.
     std::vector<Frame> frames;
     CameraCalibration calibration;

@@ -43,6 +43,7 @@ struct RunArgs {
   std::string scene;
   std::string bayer = "rggb";
   std::string bayer_sampling = "auto";
+  bool full_search = false;
   double fps = 60;
   std::string record;
   std::string jsonl;
@@ -188,6 +189,7 @@ ProcessorOptions processorOptions(const RunArgs& a) {
   o.backend.opencl_platform = a.opencl_platform;
   o.backend.opencl_device = a.opencl_device;
   o.pipeline.bayer_sampling = bayerSamplingFromName(a.bayer_sampling);
+  o.pipeline.coarse_search = !a.full_search;
   o.detector.report_guessed_ids = !a.no_guessed_ids;
   return o;
 }
@@ -455,6 +457,9 @@ CommandFn addRunCommand(CLI::App& root) {
                   "Bayer mosaic sampling: auto|subsample|full (auto: a sample per pixel where 2x2 cells "
                   "are coarse on the field, else one per 2x2 cell)")
       ->default_str("auto");
+  cmd->add_flag("--full-search", a->full_search,
+                "find blobs on the full grid everywhere (CPU; default: a coarse search on a grid of twice the "
+                "spacing where the grid is fine, each blob then placed on the full grid)");
   cmd->add_option("--fps", a->fps, "frame rate for image sequence timestamps (index / fps)")
       ->default_str("60")
       ->check(CLI::PositiveNumber);
