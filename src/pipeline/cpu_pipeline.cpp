@@ -264,7 +264,7 @@ struct CpuPipeline::Impl {
   // them on this one.
   bool coarseProcess(const cv::Mat& raw, BlobList& out) {
     const auto t_start = std::chrono::steady_clock::now();
-    pool.parallelFor(image_h / 4, [&](int b, int e) { binMosaicRows(raw, opt.bayer, binned, b, e); });
+    pool.parallelFor(image_h / 4, [&](int b, int e) { binMosaicRows(raw, binned, b, e); });
     const double bin_ms = msSince(t_start);
     if (!coarse->process(binned, out)) {
       error = coarse->error;

@@ -70,6 +70,10 @@ __attribute__((target_clones("avx2", "default"))) void streakCoarseRows(const fl
     const float* b = cb + static_cast<size_t>(cy) * f * gw;
     float* out = coarse + 2 * static_cast<size_t>(cy) * cw;
     int cx = 0;
+    if (f == 1) {  // the coarse search's grid (pipeline_options.h)
+      for (; cx < cw; ++cx) out[2 * cx] = a[cx], out[2 * cx + 1] = b[cx];
+      continue;
+    }
     if (f == 2) {  // the usual case
       auto cell = [&](int x) {
         out[2 * x] = (a[2 * x] + a[2 * x + 1]) * norm;
