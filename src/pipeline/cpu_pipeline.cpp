@@ -53,6 +53,12 @@ constexpr double kMaxCoarseGridMm = 12;
 // grid: its peak is within a coarse cell, other blobs' peaks are at least
 // 43 mm (7 cells at 5.6 mm) away.
 constexpr int kFineSearchCells = 3;
+// The coarse pass's thresholds, as a share of the full ones: the coarse
+// grid scores peaks lower (faint discs about half), and the full grid's
+// score decides. Weak peaks are looked for only near blobs, so their
+// threshold can go lower at little cost.
+constexpr double kCoarseThresholdFactor = 0.75;
+constexpr double kCoarseWeakThresholdFactor = 0.5;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -129,6 +135,9 @@ struct CpuPipeline::Impl {
   std::unique_ptr<Impl> coarse;
   cv::Mat binned;
   std::vector<FinePeak> fine_peaks;
+  std::vector<Blob> found, streaks;  // the coarse pass's peaks, its fast-ball candidates
+  std::vector<float> found_ratio;
+  std::vector<int> order;
 
   StageTimes times;
   std::string error;
@@ -238,15 +247,22 @@ struct CpuPipeline::Impl {
     c.principal_point_y = (c.principal_point_y - 0.5) * 0.5;
     c.image_width /= 2;
     c.image_height /= 2;
+    // Padded by the coarse score's margin on every side: cells without a
+    // full score window are then outside this grid, so blobs are found as
+    // close to its edges as here (cells outside the image are never peaks).
     RectifiedGrid g;
     g.scale = 2 * grid.scale;
-    g.width = (grid.width + 1) / 2;
-    g.height = (grid.height + 1) / 2;
-    g.x0 = grid.x0 + 0.5 * grid.scale;
-    g.y0 = grid.y0 - 0.5 * grid.scale;
+    const int pad = scoreWindows(g.scale, opt.score).margin;
+    g.width = (grid.width + 1) / 2 + 2 * pad;
+    g.height = (grid.height + 1) / 2 + 2 * pad;
+    g.x0 = grid.x0 + 0.5 * grid.scale - pad * g.scale;
+    g.y0 = grid.y0 - 0.5 * grid.scale + pad * g.scale;
     PipelineOptions co = opt;
     co.coarse_search = false;
     co.bayer_sampling = BayerSampling::Subsample;
+    // Peaks a little below the thresholds too: the full grid's score decides.
+    co.threshold *= kCoarseThresholdFactor;
+    co.weak_threshold *= kCoarseWeakThresholdFactor;
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
     binned.create(image_h / 2, image_w / 2, CV_8UC1);
     FinePeakSpec spec;
@@ -256,6 +272,11 @@ struct CpuPipeline::Impl {
     spec.quadrant_r = quadrant_r;
     spec.inner_q = inner_q;
     spec.energy_r = w.energy_window;
+    const size_t room = static_cast<size_t>(std::max(0, opt.max_blobs) + weakCapacity()) + kMaxStreakCandidates;
+    found.reserve(room);
+    found_ratio.reserve(room);
+    order.reserve(room);
+    streaks.reserve(kMaxStreakCandidates);
     fine_peaks.assign(pool.size(), {});
     for (FinePeak& f : fine_peaks) f.configure(table, spec, opt.bayer, chroma_fixed);
   }
@@ -271,29 +292,66 @@ struct CpuPipeline::Impl {
       return false;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const float gain = 1.0f / (coarse->luma_mean * kPackedChromaScale);
-    const int n_strong = static_cast<int>(out.blobs.size());
-    const int n = n_strong + static_cast<int>(out.weak.size());
+    last_raw = raw;
+    luma_mean = coarse->luma_mean;
+    // Every peak the coarse pass found, placed and scored on this grid.
+    found.clear();
+    for (const Blob& b : out.blobs)
+      if (!b.streak) found.push_back(b);
+    for (const Blob& b : out.weak) found.push_back(b);
+    const int n = static_cast<int>(found.size());
+    found_ratio.resize(n);
+    const float gain = 1.0f / (luma_mean * kPackedChromaScale);
     forParts(n, [&](int p, int b, int e) {
       for (int i = b; i < e; ++i) {
-        Blob& blob = i < n_strong ? out.blobs[i] : out.weak[i - n_strong];
-        const GridPx guess = grid.toGrid(blob.position);
+        Blob& blob = found[i];
         GridPx at;
         float ratio;
-        if (!blob.streak && fine_peaks[p].refine(raw, gain, guess, at, ratio)) {
+        if (fine_peaks[p].refine(raw, gain, grid.toGrid(blob.position), at, ratio)) {
           blob.grid = at;
           blob.position = grid.toField(at);
-        } else {
-          blob.grid = guess;
+          blob.score = ratio;
+        } else {  // next to the grid's edge: the coarse place and score
+          blob.grid = grid.toGrid(blob.position);
         }
+        found_ratio[i] = blob.score;
       }
     });
+    // Selected as the full pass selects its peaks: strongest first, one per
+    // object, weak peaks only within reach of a blob.
+    order.resize(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return found_ratio[a] > found_ratio[b]; });
+    const float threshold = static_cast<float>(opt.threshold), low = lowThreshold();
+    spacing.clear();
+    reach.clear();
+    streaks.clear();
+    for (const Blob& b : out.blobs)
+      if (b.streak) streaks.push_back(b);
+    out.blobs.clear();
+    out.weak.clear();
+    for (int i : order) {
+      const Blob& b = found[i];
+      if (!(b.score > low)) break;
+      if (spacing.nearKept(b.grid.x, b.grid.y)) continue;
+      if (b.score > threshold) {
+        if (static_cast<int>(out.blobs.size()) >= opt.max_blobs) continue;
+        out.blobs.push_back(b);
+        reach.keep(b.grid.x, b.grid.y);
+      } else {
+        if (static_cast<int>(out.weak.size()) >= weakCapacity() || !reach.nearKept(b.grid.x, b.grid.y)) continue;
+        out.weak.push_back(b);
+      }
+      spacing.keep(b.grid.x, b.grid.y);
+    }
+    for (Blob& b : streaks) {
+      b.grid = grid.toGrid(b.position);
+      out.blobs.push_back(b);
+    }
     times = coarse->times;
     times.bayer_ms += bin_ms;
     times.peaks_ms += msSince(t0);
     times.total_ms = msSince(t_start);
-    last_raw = raw;
-    luma_mean = coarse->luma_mean;
     has_frame = true;
     return true;
   }
