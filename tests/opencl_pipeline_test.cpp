@@ -116,11 +116,18 @@ void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string
   EXPECT_EQ(a, b) << what;
 }
 
+// The CPU reference the OpenCL backend matches: the full grid everywhere
+// (the OpenCL backend has no coarse search).
+PipelineOptions fullSearch(PipelineOptions opt) {
+  opt.coarse_search = false;
+  return opt;
+}
+
 // One frame through both backends built with `opt`: blob lists a (CPU) and
 // b (OpenCL); ok() says whether both ran, error() why not.
 struct BothBackends {
   BothBackends(const CameraModel& cam, const FieldModel& field, const PipelineOptions& opt, const cv::Mat& image)
-      : cpu(cam, field, opt), ocl(cam, field, opt, *testDevice()) {
+      : cpu(cam, field, fullSearch(opt)), ocl(cam, field, opt, *testDevice()) {
     cpu_ok = cpu.process(image, a);
     ocl_ok = ocl.process(image, b);
   }
@@ -223,7 +230,7 @@ TEST(OpenClStages, EveryStageMatchesTheCpuFunction) {
   scene.noise_sigma = 2;
   const cv::Mat raw = scene.render(cam, BayerPattern::RGGB);
   PipelineOptions opt;
-  CpuPipeline cpu(cam, field, opt);
+  CpuPipeline cpu(cam, field, fullSearch(opt));
   OpenClPipeline ocl(cam, field, opt, *testDevice());
   BlobList cpu_blobs, ocl_blobs;
   ASSERT_TRUE(cpu.process(raw, cpu_blobs)) << cpu.lastError();
@@ -398,7 +405,7 @@ TEST_P(OpenClFrames, BlobsMatchTheCpuReference) {
   opt.color = p.color;
   opt.score = p.score;
   opt.bayer_sampling = p.sampling;
-  CpuPipeline cpu(cam, field, opt);
+  CpuPipeline cpu(cam, field, fullSearch(opt));
   OpenClPipeline ocl(cam, field, opt, *testDevice());
   for (int frame = 0; frame < 2; ++frame) {  // buffers are reused: a second frame must agree too
     BlobList a, b;

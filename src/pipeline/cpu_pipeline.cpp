@@ -138,6 +138,9 @@ struct CpuPipeline::Impl {
   std::vector<Blob> found, streaks;  // the coarse pass's peaks, its fast-ball candidates
   std::vector<float> found_ratio;
   std::vector<int> order;
+  // Blobs at or below this score do not hide a fast ball (the coarse pass:
+  // the full threshold; its other peaks may not survive; nearBlob).
+  float streak_blob_floor = 0;
 
   StageTimes times;
   std::string error;
@@ -264,6 +267,7 @@ struct CpuPipeline::Impl {
     co.threshold *= kCoarseThresholdFactor;
     co.weak_threshold *= kCoarseWeakThresholdFactor;
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
+    coarse->streak_blob_floor = static_cast<float>(opt.threshold);
     binned.create(image_h / 2, image_w / 2, CV_8UC1);
     FinePeakSpec spec;
     spec.search = kFineSearchCells;
@@ -344,9 +348,9 @@ struct CpuPipeline::Impl {
       }
       spacing.keep(b.grid.x, b.grid.y);
     }
-    for (Blob& b : streaks) {
+    for (Blob& b : streaks) {  // strongest first; where no blob is, as in the full pass
       b.grid = grid.toGrid(b.position);
-      out.blobs.push_back(b);
+      if (acceptStreakBlob(out.blobs, b, grid.scale)) out.blobs.push_back(b);
     }
     times = coarse->times;
     times.bayer_ms += bin_ms;
@@ -356,8 +360,16 @@ struct CpuPipeline::Impl {
     return true;
   }
 
-  // What the inspection views show: the pass that found the blobs.
+  // What the inspection views show: the pass that found the blobs, its
+  // view brought onto this grid (cells repeated, the padding cut off).
   const Impl& shown() const { return coarse ? *coarse : *this; }
+  cv::Mat onGrid(const cv::Mat& view) const {
+    if (!coarse) return view;
+    const int pad = static_cast<int>(std::lround((grid.x0 + 0.5 * grid.scale - coarse->grid.x0) / coarse->grid.scale));
+    cv::Mat up;
+    cv::resize(view(cv::Rect(pad, pad, (grid.width + 1) / 2, (grid.height + 1) / 2)), up, {}, 2, 2, cv::INTER_NEAREST);
+    return up(cv::Rect(0, 0, grid.width, grid.height)).clone();
+  }
 
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
 
@@ -950,7 +962,7 @@ struct CpuPipeline::Impl {
       return a.y != b.y ? a.y < b.y : a.x < b.x;
     });
     for (const StreakPeak& p : streak_merged) {
-      if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
+      if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale, streak_blob_floor)) continue;
       const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
       Blob blob;
       blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
@@ -958,7 +970,9 @@ struct CpuPipeline::Impl {
       blob.score = p.score;
       blob.streak = true;
       meanColor(blob.grid, blob.rgb);
-      if (acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
+      if (streak_blob_floor > 0 ? !nearBlob(out.blobs, blob.grid, grid.scale, streak_blob_floor)
+                                : acceptStreakBlob(out.blobs, blob, grid.scale))
+        out.blobs.push_back(blob);
     }
   }
 
@@ -1031,7 +1045,7 @@ std::optional<ImagePx> CpuPipeline::gridToImage(GridPx g) const {
 cv::Mat CpuPipeline::debugRectified() const {
   const auto& m = impl_->shown();
   cv::Mat out(m.grid.height, m.grid.width, CV_8UC3, cv::Scalar(0, 0, 0));
-  if (!m.has_frame) return out;
+  if (!m.has_frame) return impl_->onGrid(out);
   for (int y = 0; y < out.rows; ++y) {
     auto* row = out.ptr<cv::Vec3b>(y);
     for (int x = 0; x < out.cols; ++x) {
@@ -1041,7 +1055,7 @@ cv::Mat CpuPipeline::debugRectified() const {
                          cv::saturate_cast<uint8_t>(c[0]));
     }
   }
-  return out;
+  return impl_->onGrid(out);
 }
 
 namespace {
@@ -1078,13 +1092,13 @@ cv::Mat CpuPipeline::debugGradient() const {
     std::nth_element(mags.begin(), it, mags.end());
     full = std::max(1, *it);
   }
-  return signedView(gdot.data(), m.grid.width, m.grid.height, full);
+  return impl_->onGrid(signedView(gdot.data(), m.grid.width, m.grid.height, full));
 }
 
 cv::Mat CpuPipeline::debugScore() const {
   const auto& m = impl_->shown();
   // The threshold maps to a quarter of the range above 0.
-  return signedView(m.score.data(), m.grid.width, m.grid.height, 4 * m.opt.threshold);
+  return impl_->onGrid(signedView(m.score.data(), m.grid.width, m.grid.height, 4 * m.opt.threshold));
 }
 
 }  // namespace dv
