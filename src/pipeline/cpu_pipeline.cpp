@@ -1,11 +1,10 @@
-#include "pipeline/fine_peak.h"
-#include "pipeline/mosaic_binning.h"
 #include "pipeline/cpu_pipeline.h"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -16,7 +15,9 @@
 #include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/blob_spacing.h"
+#include "pipeline/fine_peak.h"
 #include "pipeline/kernels.h"
+#include "pipeline/mosaic_binning.h"
 #include "pipeline/band_peaks.h"
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
@@ -138,9 +139,9 @@ struct CpuPipeline::Impl {
   std::vector<Blob> found, streaks;  // the coarse pass's peaks, its fast-ball candidates
   std::vector<float> found_ratio;
   std::vector<int> order;
-  // Blobs at or below this score do not hide a fast ball (the coarse pass:
-  // the full threshold; its other peaks may not survive; nearBlob).
-  float streak_blob_floor = 0;
+  // The coarse pass keeps every fast-ball candidate, blob or not: its blobs
+  // may not survive the full grid's score, whose blobs then decide.
+  bool streaks_unhidden = false;
 
   StageTimes times;
   std::string error;
@@ -267,7 +268,11 @@ struct CpuPipeline::Impl {
     co.threshold *= kCoarseThresholdFactor;
     co.weak_threshold *= kCoarseWeakThresholdFactor;
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
-    coarse->streak_blob_floor = static_cast<float>(opt.threshold);
+    coarse->streaks_unhidden = true;
+    char note[96];
+    std::snprintf(note, sizeof note, "; coarse search: blobs found on a %.1f mm grid, placed on the %.1f mm one",
+                  g.scale, grid.scale);
+    sampling_note += note;
     binned.create(image_h / 2, image_w / 2, CV_8UC1);
     FinePeakSpec spec;
     spec.search = kFineSearchCells;
@@ -315,6 +320,7 @@ struct CpuPipeline::Impl {
           blob.grid = at;
           blob.position = grid.toField(at);
           blob.score = ratio;
+          meanColor(at, blob.rgb);  // from the frame itself, as the full pass
         } else {  // next to the grid's edge: the coarse place and score
           blob.grid = grid.toGrid(blob.position);
         }
@@ -962,7 +968,7 @@ struct CpuPipeline::Impl {
       return a.y != b.y ? a.y < b.y : a.x < b.x;
     });
     for (const StreakPeak& p : streak_merged) {
-      if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale, streak_blob_floor)) continue;
+      if (!streaks_unhidden && nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
       const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
       Blob blob;
       blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
@@ -970,9 +976,7 @@ struct CpuPipeline::Impl {
       blob.score = p.score;
       blob.streak = true;
       meanColor(blob.grid, blob.rgb);
-      if (streak_blob_floor > 0 ? !nearBlob(out.blobs, blob.grid, grid.scale, streak_blob_floor)
-                                : acceptStreakBlob(out.blobs, blob, grid.scale))
-        out.blobs.push_back(blob);
+      if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
     }
   }
 

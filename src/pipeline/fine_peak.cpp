@@ -32,8 +32,10 @@ bool FinePeak::refine(const cv::Mat& raw, float gain, GridPx guess, GridPx& at, 
   const RemapTable& t = *table_;
   const int half = spec_.search + spec_.margin;
   const int cx = static_cast<int>(std::lround(guess.x)), cy = static_cast<int>(std::lround(guess.y));
-  const int x0 = cx - half, y0 = cy - half;
-  if (x0 < 0 || y0 < 0 || x0 + n_ > t.width || y0 + n_ > t.height) return false;
+  // Next to the grid's edges the window is moved inside: cells there have
+  // no score in the full pass either.
+  if (n_ > t.width || n_ > t.height) return false;
+  const int x0 = std::clamp(cx - half, 0, t.width - n_), y0 = std::clamp(cy - half, 0, t.height - n_);
 
   // The samples the window reads: its box in the subsampled image.
   int i_begin = INT_MAX, i_end = 0, j_begin = INT_MAX, j_end = 0;
@@ -61,19 +63,26 @@ bool FinePeak::refine(const cv::Mat& raw, float gain, GridPx guess, GridPx& at, 
   quadrantMinScoreFromChroma(ca_.data(), cb_.data(), n_, n_, spec_.gradient_scale, spec_.quadrant_r, spec_.inner_q,
                              score_.data(), 0, n_, ring_);
 
-  // The highest score within `search` of the guess's cell.
-  int bx = half, by = half;
-  float best = -INFINITY;
-  for (int y = half - spec_.search; y <= half + spec_.search; ++y)
-    for (int x = half - spec_.search; x <= half + spec_.search; ++x) {
-      const float s = score_[static_cast<size_t>(y) * n_ + x];
-      if (s > best) best = s, bx = x, by = y;
+  // The peaks (the full pass's 4-way test) within `search` of the guess's
+  // cell, among window cells with a full score window; the one of highest
+  // ratio, as the full pass keeps the strongest of peaks this close.
+  const int m = spec_.margin;
+  const int lx = std::max(m, cx - x0 - spec_.search), hx = std::min(n_ - 1 - m, cx - x0 + spec_.search);
+  const int ly = std::max(m, cy - y0 - spec_.search), hy = std::min(n_ - 1 - m, cy - y0 + spec_.search);
+  int bx = -1, by = -1;
+  float best = 0;
+  for (int y = ly; y <= hy; ++y)
+    for (int x = lx; x <= hx; ++x) {
+      const float* c = score_.data() + static_cast<size_t>(y) * n_ + x;
+      if (!(*c > 0 && *c > c[-1] && *c >= c[1] && *c > c[-n_] && *c >= c[n_])) continue;
+      const float r = *c / (windowGradientEnergy(ca_.data(), cb_.data(), n_, spec_.gradient_scale, x, y,
+                                                 spec_.energy_r) + kEnergyFloor);
+      if (r > best) best = r, bx = x, by = y;
     }
-  if (!(best > 0) || std::abs(bx - half) == spec_.search || std::abs(by - half) == spec_.search) return false;
+  if (bx < 0) return false;
   const GridPx p = interpolatePeak(score_.data(), n_, bx, by);
-  const float energy = windowGradientEnergy(ca_.data(), cb_.data(), n_, spec_.gradient_scale, bx, by, spec_.energy_r);
   at = {p.x + x0, p.y + y0};
-  ratio = best / (energy + kEnergyFloor);
+  ratio = best;
   return true;
 }
 

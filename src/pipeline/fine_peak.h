@@ -28,10 +28,10 @@ class FinePeak {
   // table: the full grid's remap table for Bayer 2x2 subsampling (not
   // transposed). Sizes the scratch once.
   void configure(const RemapTable& table, const FinePeakSpec& spec, BayerPattern pattern, const ChromaFixed& k);
-  // The peak nearest in score to `guess` (full-grid cells) within `search`
-  // cells, and its ratio score (score over window energy plus the floor).
-  // False, with nothing written, where the window leaves the grid or the
-  // highest score lies on the search border (the blob is elsewhere).
+  // The score peak within `search` cells of `guess` (full-grid cells) with
+  // the highest ratio score (score over window energy plus the floor),
+  // interpolated, and that ratio. False, with nothing written, where no
+  // peak lies there (the coarse peak was noise, or its blob lies beyond).
   bool refine(const cv::Mat& raw, float gain, GridPx guess, GridPx& at, float& ratio);
 
  private:

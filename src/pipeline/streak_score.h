@@ -68,9 +68,7 @@ GridPx refineStreak(const float* ca, const float* cb, int width, int height, con
 GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p);
 // Whether a blob of `blobs` lies within kStreakBlobDistanceMm of g: a peak
 // there is that blob (checked before the refinement, to spare it, and after).
-// Blobs scoring `min_score` or less do not count (a coarse search's peaks
-// below the full threshold, which its full-grid score may still drop).
-bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale, float min_score = 0);
+bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale);
 
 // Whether a streak blob (position and color set) joins `blobs`: not within
 // kStreakBlobDistanceMm of any blob there (an object the blob score found,
