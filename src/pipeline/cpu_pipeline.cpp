@@ -50,10 +50,13 @@ constexpr size_t kWeakScanOnPoolAbove = 150;
 // (1224 x 1024 subsampled from 4 m) every robot of the synthetic scenes is
 // still found.
 constexpr double kMaxCoarseGridMm = 12;
-// How far (full-grid cells) a coarse blob may lie from its peak on the full
-// grid: its peak is within a coarse cell, other blobs' peaks are at least
-// 43 mm (7 cells at 5.6 mm) away.
-constexpr int kFineSearchCells = 3;
+// The full grid is scored in regions around the coarse pass's peaks, so that
+// every peak within kWindowReachMm of one is found: a ball touching a robot
+// that the coarse grid merges into a side blob's response (57 mm off), side
+// blobs the coarse grid scores too low. Regions hold up to kWindowSideMm a
+// side (a robot's blobs and that reach around them).
+constexpr double kWindowReachMm = 60;
+constexpr double kWindowSideMm = 320;
 // The coarse pass's thresholds, as a share of the full ones: the coarse
 // grid scores peaks lower (faint discs about half), and the full grid's
 // score decides. Weak peaks are looked for only near blobs, so their
@@ -136,12 +139,18 @@ struct CpuPipeline::Impl {
   std::unique_ptr<Impl> coarse;
   cv::Mat binned;
   std::vector<FinePeak> fine_peaks;
-  std::vector<Blob> found, streaks;  // the coarse pass's peaks, its fast-ball candidates
-  std::vector<float> found_ratio;
-  std::vector<int> order;
+  std::vector<CellRect> regions;                         // of this grid, around the coarse peaks
+  std::vector<std::vector<FinePeakFound>> window_peaks;  // per pool part
+  std::vector<int> window_counts;
+  BlobSpacing coarse_reach;  // weak reach around the coarse pass's blobs, on this grid
+  std::vector<FinePeakFound> found_peaks;
+  std::vector<Blob> streaks;  // the coarse pass's fast-ball candidates
   // The coarse pass keeps every fast-ball candidate, blob or not: its blobs
-  // may not survive the full grid's score, whose blobs then decide.
+  // may not survive the full grid's score, whose blobs then decide. It
+  // keeps each one's fit too (in candidate order), to place it on the full
+  // grid.
   bool streaks_unhidden = false;
+  std::vector<StreakFit> streak_fits;
 
   StageTimes times;
   std::string error;
@@ -269,22 +278,25 @@ struct CpuPipeline::Impl {
     co.weak_threshold *= kCoarseWeakThresholdFactor;
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
     coarse->streaks_unhidden = true;
+    coarse->streak_fits.reserve(static_cast<size_t>(kMaxStreakCandidates) * pool.size());
     char note[96];
     std::snprintf(note, sizeof note, "; coarse search: blobs found on a %.1f mm grid, placed on the %.1f mm one",
                   g.scale, grid.scale);
     sampling_note += note;
     binned.create(image_h / 2, image_w / 2, CV_8UC1);
     FinePeakSpec spec;
-    spec.search = kFineSearchCells;
+    spec.max_side = static_cast<int>(std::ceil(kWindowSideMm / grid.scale));
     spec.margin = w.margin;
     spec.gradient_scale = gradient_scale;
     spec.quadrant_r = quadrant_r;
     spec.inner_q = inner_q;
     spec.energy_r = w.energy_window;
     const size_t room = static_cast<size_t>(std::max(0, opt.max_blobs) + weakCapacity()) + kMaxStreakCandidates;
-    found.reserve(room);
-    found_ratio.reserve(room);
-    order.reserve(room);
+    regions.reserve(room);
+    coarse_reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs) + kMaxStreakCandidates);
+    window_peaks.assign(pool.size(), std::vector<FinePeakFound>(room));
+    window_counts.assign(pool.size(), 0);
+    found_peaks.reserve(room * pool.size());
     streaks.reserve(kMaxStreakCandidates);
     fine_peaks.assign(pool.size(), {});
     for (FinePeak& f : fine_peaks) f.configure(table, spec, opt.bayer, chroma_fixed);
@@ -303,36 +315,73 @@ struct CpuPipeline::Impl {
     const auto t0 = std::chrono::steady_clock::now();
     last_raw = raw;
     luma_mean = coarse->luma_mean;
-    // Every peak the coarse pass found, placed and scored on this grid.
-    found.clear();
-    for (const Blob& b : out.blobs)
-      if (!b.streak) found.push_back(b);
-    for (const Blob& b : out.weak) found.push_back(b);
-    const int n = static_cast<int>(found.size());
-    found_ratio.resize(n);
-    const float gain = 1.0f / (luma_mean * kPackedChromaScale);
-    forParts(n, [&](int p, int b, int e) {
-      for (int i = b; i < e; ++i) {
-        Blob& blob = found[i];
-        GridPx at;
-        float ratio;
-        if (fine_peaks[p].refine(raw, gain, grid.toGrid(blob.position), at, ratio)) {
-          blob.grid = at;
-          blob.position = grid.toField(at);
-          blob.score = ratio;
-          meanColor(at, blob.rgb);  // from the frame itself, as the full pass
-        } else {  // next to the grid's edge: the coarse place and score
-          blob.grid = grid.toGrid(blob.position);
+    // Regions of this grid around the coarse pass's peaks: each peak's
+    // square of kWindowReachMm joins a region it overlaps while that stays
+    // within the largest window (a robot's blobs make one region), else
+    // starts one.
+    regions.clear();
+    const int r = static_cast<int>(std::ceil(kWindowReachMm / grid.scale));
+    const int max_side = fine_peaks[0].maxSide();
+    auto join = [&](const CellRect& a, const CellRect& b, CellRect& u) {
+      if (a.x1 <= b.x0 || b.x1 <= a.x0 || a.y1 <= b.y0 || b.y1 <= a.y0) return false;
+      u = {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+      return u.x1 - u.x0 <= max_side && u.y1 - u.y0 <= max_side;
+    };
+    auto addPeak = [&](const Blob& b) {
+      const GridPx g = grid.toGrid(b.position);
+      const int x = static_cast<int>(std::floor(g.x)), y = static_cast<int>(std::floor(g.y));
+      const CellRect box{x - r, y - r, x + r + 2, y + r + 2};
+      CellRect u;
+      for (CellRect& reg : regions)
+        if (join(reg, box, u)) {
+          reg = u;
+          return;
         }
-        found_ratio[i] = blob.score;
+      regions.push_back(box);
+    };
+    // Weak peaks are scored only near the coarse pass's blobs (the full
+    // pass: near its own blobs).
+    coarse_reach.clear();
+    for (const Blob& b : out.blobs)
+      if (!b.streak) {
+        addPeak(b);
+        const GridPx g = grid.toGrid(b.position);
+        coarse_reach.keep(g.x, g.y);
       }
+    for (const Blob& b : out.weak) addPeak(b);
+    // Regions that grew into each other since: merged where they fit.
+    for (size_t i = 0; i < regions.size(); ++i)
+      for (size_t j = i + 1; j < regions.size();) {
+        CellRect u;
+        if (join(regions[i], regions[j], u)) {
+          regions[i] = u;
+          regions[j] = regions.back();
+          regions.pop_back();
+          j = i + 1;
+        } else {
+          ++j;
+        }
+      }
+    const float threshold = static_cast<float>(opt.threshold), low = lowThreshold();
+    const FinePeak::Thresholds th{low * kEnergyFloor, rawThreshold(), low};
+    const float gain = 1.0f / (luma_mean * kPackedChromaScale);
+    forParts(static_cast<int>(regions.size()), [&](int p, int b, int e) {
+      std::vector<FinePeakFound>& list = window_peaks[p];
+      int n = 0;
+      for (int i = b; i < e; ++i)
+        n += fine_peaks[p].peaks(raw, gain, regions[i], peak_mask.data(), th, coarse_reach, list.data() + n,
+                                 static_cast<int>(list.size()) - n);
+      window_counts[p] = n;
+    });
+    found_peaks.clear();
+    for (size_t p = 0; p < window_peaks.size(); ++p)
+      found_peaks.insert(found_peaks.end(), window_peaks[p].begin(), window_peaks[p].begin() + window_counts[p]);
+    // Strongest first; a peak two windows found twice is the same cell.
+    std::sort(found_peaks.begin(), found_peaks.end(), [](const FinePeakFound& a, const FinePeakFound& b) {
+      return a.ratio != b.ratio ? a.ratio > b.ratio : (a.y != b.y ? a.y < b.y : a.x < b.x);
     });
     // Selected as the full pass selects its peaks: strongest first, one per
     // object, weak peaks only within reach of a blob.
-    order.resize(n);
-    for (int i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return found_ratio[a] > found_ratio[b]; });
-    const float threshold = static_cast<float>(opt.threshold), low = lowThreshold();
     spacing.clear();
     reach.clear();
     streaks.clear();
@@ -340,22 +389,33 @@ struct CpuPipeline::Impl {
       if (b.streak) streaks.push_back(b);
     out.blobs.clear();
     out.weak.clear();
-    for (int i : order) {
-      const Blob& b = found[i];
-      if (!(b.score > low)) break;
-      if (spacing.nearKept(b.grid.x, b.grid.y)) continue;
-      if (b.score > threshold) {
-        if (static_cast<int>(out.blobs.size()) >= opt.max_blobs) continue;
-        out.blobs.push_back(b);
-        reach.keep(b.grid.x, b.grid.y);
-      } else {
-        if (static_cast<int>(out.weak.size()) >= weakCapacity() || !reach.nearKept(b.grid.x, b.grid.y)) continue;
-        out.weak.push_back(b);
-      }
+    for (const FinePeakFound& f : found_peaks) {
+      const bool strong = f.ratio > threshold;
+      if (spacing.nearKept(f.x, f.y)) continue;
+      if (strong ? static_cast<int>(out.blobs.size()) >= opt.max_blobs
+                 : static_cast<int>(out.weak.size()) >= weakCapacity() || !reach.nearKept(f.x, f.y))
+        continue;
+      Blob b;
+      b.grid = f.at;
+      b.position = grid.toField(f.at);
+      b.score = f.ratio;
+      meanColor(b.grid, b.rgb);
+      if (!saturated(b)) continue;
+      (strong ? out.blobs : out.weak).push_back(b);
+      if (strong) reach.keep(b.grid.x, b.grid.y);
       spacing.keep(b.grid.x, b.grid.y);
     }
-    for (Blob& b : streaks) {  // strongest first; where no blob is, as in the full pass
-      b.grid = grid.toGrid(b.position);
+    // Fast balls, strongest first, where no blob is (as in the full pass),
+    // placed from this grid's chroma.
+    const double k = coarse->grid.scale / grid.scale;
+    for (size_t i = 0; i < streaks.size(); ++i) {
+      Blob& b = streaks[i];
+      StreakFit fit = coarse->streak_fits[i];
+      const GridPx c = grid.toGrid(coarse->grid.toField({fit.cx, fit.cy}));
+      fit.cx = c.x, fit.cy = c.y, fit.along *= k, fit.across *= k;
+      b.grid = fine_peaks[0].streak(raw, gain, fit);
+      b.position = grid.toField(b.grid);
+      meanColor(b.grid, b.rgb);
       if (acceptStreakBlob(out.blobs, b, grid.scale)) out.blobs.push_back(b);
     }
     times = coarse->times;
@@ -946,6 +1006,7 @@ struct CpuPipeline::Impl {
   // it on the pool beside the peaks).
   void findStreaks(BlobList& out, bool scored) {
     const int lh = streak.lattice_height;
+    streak_fits.clear();
     if (!scored) {
       pool.parallelFor(lh, [&](int b, int e) {
         streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
@@ -976,7 +1037,12 @@ struct CpuPipeline::Impl {
       blob.score = p.score;
       blob.streak = true;
       meanColor(blob.grid, blob.rgb);
-      if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
+      if (streaks_unhidden) {
+        out.blobs.push_back(blob);
+        streak_fits.push_back(streakFit(streak_coarse.data(), streak, p, o));
+      } else if (acceptStreakBlob(out.blobs, blob, grid.scale)) {
+        out.blobs.push_back(blob);
+      }
     }
   }
 

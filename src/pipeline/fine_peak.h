@@ -1,26 +1,40 @@
 #pragma once
-// Places a blob found by the coarse search (coarse_search.h) on the full
-// grid: rectifies a small window of full-grid cells around the coarse
-// position straight from the mosaic, scores it with the same gradient dot
-// product and quadrant score as the full pass, and takes the score's peak
-// near the guess with quadratic interpolation. Inside the window the scores
-// are those the full pass would compute, so the position is the full grid's.
+// The full grid's blob score near the blobs of the coarse search
+// (pipeline_options.h): a window of full-grid cells around a coarse blob is
+// rectified straight from the mosaic and scored with the same gradient dot
+// product, quadrant score and ratio test as the full pass, and its peaks are
+// taken with the full pass's 4-way test and quadratic interpolation. Inside
+// the window the scores are those the full pass computes, so the peaks are
+// the full grid's.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
 #include "core/units.h"
+#include "pipeline/blob_spacing.h"
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/remap_table.h"
+#include "pipeline/streak_score.h"
 
 namespace dv {
 
 struct FinePeakSpec {
-  int search = 3;             // cells around the guess where the peak may lie
+  int max_side = 16;          // cells: the largest region taken at once
   int margin = 1;             // cells a score needs around it (ScoreWindows::margin)
   double gradient_scale = 1;  // cells
   int quadrant_r = 2, inner_q = 0;
   int energy_r = 2;           // ratio window (cells)
+};
+
+// Cells [x0, x1) x [y0, y1) of the full grid.
+struct CellRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct FinePeakFound {
+  int x = 0, y = 0;  // full-grid cell
+  GridPx at;         // interpolated
+  float ratio = 0;   // score over window energy plus the floor
 };
 
 class FinePeak {
@@ -28,18 +42,32 @@ class FinePeak {
   // table: the full grid's remap table for Bayer 2x2 subsampling (not
   // transposed). Sizes the scratch once.
   void configure(const RemapTable& table, const FinePeakSpec& spec, BayerPattern pattern, const ChromaFixed& k);
-  // The score peak within `search` cells of `guess` (full-grid cells) with
-  // the highest ratio score (score over window energy plus the floor),
-  // interpolated, and that ratio. False, with nothing written, where no
-  // peak lies there (the coarse peak was noise, or its blob lies beyond).
-  bool refine(const cv::Mat& raw, float gain, GridPx guess, GridPx& at, float& ratio);
+  int maxSide() const { return spec_.max_side; }
+  struct Thresholds {
+    float raw_low = 0;     // raw score of a weak peak (weak threshold x energy floor)
+    float raw_strong = 0;  // raw score of a blob (threshold x energy floor)
+    float low = 0;         // ratio of a weak peak
+  };
+  // The peaks in `region` (at most max_side cells a side) where mask != 0
+  // (the full grid's peak mask), raw score above th.raw_low (and above
+  // th.raw_strong unless `near` has a blob close by) and ratio above th.low,
+  // appended to out[0, capacity). Returns how many.
+  int peaks(const cv::Mat& raw, float gain, const CellRect& region, const uint8_t* mask, const Thresholds& th,
+            const BlobSpacing& near, FinePeakFound* out, int capacity);
+  // A fast ball's place on this grid: streakCentroid of `fit` (this grid's
+  // cells) over chroma rectified here.
+  GridPx streak(const cv::Mat& raw, float gain, const StreakFit& fit);
 
  private:
+  // Chroma of window cells [x0, x0 + w) x [y0, y0 + h) into ca_, cb_ (row
+  // stride w); false where its samples do not fit the box.
+  bool rectify(const cv::Mat& raw, float gain, int x0, int y0, int w, int h);
+
   const RemapTable* table_ = nullptr;
   FinePeakSpec spec_;
   BayerPattern pattern_ = BayerPattern::RGGB;
   ChromaFixed k_{};
-  int n_ = 0;  // window side (cells)
+  int n_ = 0;  // largest window side (cells)
   std::vector<uint32_t> box_, ring_;
   std::vector<int32_t> index_;
   std::vector<float> ca_, cb_, score_;

@@ -226,41 +226,52 @@ int findStreakPeakRows(const float* score, const uint8_t* mask, const StreakWind
   return count;
 }
 
-GridPx refineStreak(const float* ca, const float* cb, int width, int height, const float* coarse,
-                    const StreakWindows& w, const StreakPeak& p, int orientation) {
+StreakFit streakFit(const float* coarse, const StreakWindows& w, const StreakPeak& p, int orientation) {
+  StreakFit fit;
   Pair inner, s[4];
   const int px = p.x * kStreakLatticeStep, py = p.y * kStreakLatticeStep;  // coarse cell
   footprint(coarse, w, orientation, px, py, inner, s);
-  const float ba = 0.25f * (s[0].a + s[1].a + s[2].a + s[3].a);
-  const float bb = 0.25f * (s[0].b + s[1].b + s[2].b + s[3].b);
-  const float da = inner.a - ba, db = inner.b - bb;
+  fit.ba = 0.25f * (s[0].a + s[1].a + s[2].a + s[3].a);
+  fit.bb = 0.25f * (s[0].b + s[1].b + s[2].b + s[3].b);
+  const float da = inner.a - fit.ba, db = inner.b - fit.bb;
   const float d2 = da * da + db * db;
   const double f = w.factor;
-  const double cx = px * f + 0.5 * (f - 1), cy = py * f + 0.5 * (f - 1);
-  if (!(d2 > 0)) return {cx, cy};
+  fit.cx = px * f + 0.5 * (f - 1), fit.cy = py * f + 0.5 * (f - 1);
+  if (!(d2 > 0)) return fit;
   const double len = std::hypot(w.step_x[orientation], w.step_y[orientation]);
-  const double ux = w.step_x[orientation] / len, uy = w.step_y[orientation] / len;
-  const double ra = w.refine_along, rc = w.refine_across;
-  const double reach = std::hypot(ra, rc);
-  const int x0 = std::max(0, static_cast<int>(std::ceil(cx - reach)));
-  const int x1 = std::min(width - 1, static_cast<int>(std::floor(cx + reach)));
-  const int y0 = std::max(0, static_cast<int>(std::ceil(cy - reach)));
-  const int y1 = std::min(height - 1, static_cast<int>(std::floor(cy + reach)));
-  const float ka = da / d2, kb = db / d2;
+  fit.ux = w.step_x[orientation] / len, fit.uy = w.step_y[orientation] / len;
+  fit.along = w.refine_along, fit.across = w.refine_across;
+  fit.ka = da / d2, fit.kb = db / d2;
+  fit.ok = true;
+  return fit;
+}
+
+GridPx streakCentroid(const StreakFit& fit, const float* ca, const float* cb, int x0, int y0, int width, int height) {
+  if (!fit.ok) return {fit.cx, fit.cy};
+  const double reach = std::hypot(fit.along, fit.across);
+  const int xa = std::max(x0, static_cast<int>(std::ceil(fit.cx - reach)));
+  const int xb = std::min(x0 + width - 1, static_cast<int>(std::floor(fit.cx + reach)));
+  const int ya = std::max(y0, static_cast<int>(std::ceil(fit.cy - reach)));
+  const int yb = std::min(y0 + height - 1, static_cast<int>(std::floor(fit.cy + reach)));
   double sw = 0, sx = 0, sy = 0;
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) {
-      const double ox = x - cx, oy = y - cy;
-      const double along = ox * ux + oy * uy, across = -ox * uy + oy * ux;
-      if (std::abs(along) > ra || std::abs(across) > rc) continue;
-      const size_t k = static_cast<size_t>(y) * width + x;
-      const float proj = (ca[k] - ba) * ka + (cb[k] - bb) * kb - 0.25f;
+  for (int y = ya; y <= yb; ++y) {
+    for (int x = xa; x <= xb; ++x) {
+      const double ox = x - fit.cx, oy = y - fit.cy;
+      const double along = ox * fit.ux + oy * fit.uy, across = -ox * fit.uy + oy * fit.ux;
+      if (std::abs(along) > fit.along || std::abs(across) > fit.across) continue;
+      const size_t k = static_cast<size_t>(y - y0) * width + (x - x0);
+      const float proj = (ca[k] - fit.ba) * fit.ka + (cb[k] - fit.bb) * fit.kb - 0.25f;
       if (!(proj > 0)) continue;
       sw += proj, sx += proj * ox, sy += proj * oy;
     }
   }
-  if (!(sw > 0)) return {cx, cy};
-  return {cx + sx / sw, cy + sy / sw};
+  if (!(sw > 0)) return {fit.cx, fit.cy};
+  return {fit.cx + sx / sw, fit.cy + sy / sw};
+}
+
+GridPx refineStreak(const float* ca, const float* cb, int width, int height, const float* coarse,
+                    const StreakWindows& w, const StreakPeak& p, int orientation) {
+  return streakCentroid(streakFit(coarse, w, p, orientation), ca, cb, 0, 0, width, height);
 }
 
 GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p) {

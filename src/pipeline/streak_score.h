@@ -64,6 +64,22 @@ int findStreakPeakRows(const float* score, const uint8_t* mask, const StreakWind
 GridPx refineStreak(const float* ca, const float* cb, int width, int height, const float* coarse,
                     const StreakWindows& w, const StreakPeak& p, int orientation);
 
+// What refineStreak weighs the cells by: the footprint rectangle (center,
+// unit direction along the streak, half lengths along and across, in grid
+// cells) and the chroma projection (background ba, bb; ka, kb the inner
+// minus background over its squared length). `ok`: false where inner and
+// background have the same chroma (the center is then the answer).
+struct StreakFit {
+  double cx = 0, cy = 0, ux = 1, uy = 0, along = 0, across = 0;
+  float ba = 0, bb = 0, ka = 0, kb = 0;
+  bool ok = false;
+};
+StreakFit streakFit(const float* coarse, const StreakWindows& w, const StreakPeak& p, int orientation);
+// The centroid of the fit's weights over cells [x0, x0 + width) x
+// [y0, y0 + height) of chroma planes ca, cb (row stride `width`; the fit's
+// coordinates are the whole grid's).
+GridPx streakCentroid(const StreakFit& fit, const float* ca, const float* cb, int x0, int y0, int width, int height);
+
 // Grid position of a lattice peak's cell center.
 GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p);
 // Whether a blob of `blobs` lies within kStreakBlobDistanceMm of g: a peak
