@@ -50,12 +50,12 @@ constexpr size_t kWeakScanOnPoolAbove = 150;
 // (1224 x 1024 subsampled from 4 m) every robot of the synthetic scenes is
 // still found.
 constexpr double kMaxCoarseGridMm = 12;
-// The full grid is scored in regions around the coarse pass's peaks, so that
-// every peak within kWindowReachMm of one is found: a ball touching a robot
-// that the coarse grid merges into a side blob's response (57 mm off), side
-// blobs the coarse grid scores too low. Regions hold up to kWindowSideMm a
-// side (a robot's blobs and that reach around them).
-constexpr double kWindowReachMm = 60;
+// The full grid is scored in regions around the coarse pass's peaks: each
+// peak's square of kWindowReachMm, merged while they fit into
+// kWindowSideMm a side. A robot's blobs make one region, which covers the
+// whole pattern, so a side blob the coarse grid scored too low or merged
+// with a neighbour is still found there.
+constexpr double kWindowReachMm = 30;
 constexpr double kWindowSideMm = 320;
 // The coarse pass's thresholds, as a share of the full ones: the coarse
 // grid scores peaks lower (faint discs about half), and the full grid's
@@ -412,6 +412,7 @@ struct CpuPipeline::Impl {
       Blob& b = streaks[i];
       StreakFit fit = coarse->streak_fits[i];
       const GridPx c = grid.toGrid(coarse->grid.toField({fit.cx, fit.cy}));
+      if (nearBlob(out.blobs, c, grid.scale)) continue;  // that blob (spares the placement)
       fit.cx = c.x, fit.cy = c.y, fit.along *= k, fit.across *= k;
       b.grid = fine_peaks[0].streak(raw, gain, fit);
       b.position = grid.toField(b.grid);
