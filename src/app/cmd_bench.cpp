@@ -83,7 +83,7 @@ CommandFn addBenchCommand(CLI::App& root) {
       ->default_str("auto");
   cmd->add_flag("--full-search", a->full_search,
                 "find blobs on the full grid everywhere (CPU; default: a coarse search on a grid of twice the "
-                "spacing where the grid is fine, each blob then placed on the full grid)");
+                "spacing where the grid is fine, then the full grid only around its peaks)");
   cmd->add_option("--iterations", a->iterations, "timed frames (default 100)")->check(CLI::PositiveNumber);
   cmd->add_option("--warmup", a->warmup, "untimed frames first (default 5)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-source-frames", a->max_source_frames,

@@ -459,7 +459,7 @@ CommandFn addRunCommand(CLI::App& root) {
       ->default_str("auto");
   cmd->add_flag("--full-search", a->full_search,
                 "find blobs on the full grid everywhere (CPU; default: a coarse search on a grid of twice the "
-                "spacing where the grid is fine, each blob then placed on the full grid)");
+                "spacing where the grid is fine, then the full grid only around its peaks)");
   cmd->add_option("--fps", a->fps, "frame rate for image sequence timestamps (index / fps)")
       ->default_str("60")
       ->check(CLI::PositiveNumber);

@@ -134,8 +134,8 @@ struct CpuPipeline::Impl {
   std::vector<StreakPeak> streak_merged;
 
   // Coarse search (pipeline_options.h): the pipeline of the binned mosaic
-  // on a grid of twice the spacing, the binned mosaic, and per pool part
-  // the window that places its blobs on this grid.
+  // on a grid of twice the spacing, the binned mosaic, per pool part the
+  // window that scores a region of this grid and the peaks it found.
   std::unique_ptr<Impl> coarse;
   cv::Mat binned;
   std::vector<FinePeak> fine_peaks;
@@ -279,8 +279,8 @@ struct CpuPipeline::Impl {
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
     coarse->streaks_unhidden = true;
     coarse->streak_fits.reserve(static_cast<size_t>(kMaxStreakCandidates) * pool.size());
-    char note[96];
-    std::snprintf(note, sizeof note, "; coarse search: blobs found on a %.1f mm grid, placed on the %.1f mm one",
+    char note[128];
+    std::snprintf(note, sizeof note, "; coarse search: peaks found on a %.1f mm grid, the %.1f mm grid scored around them",
                   g.scale, grid.scale);
     sampling_note += note;
     binned.create(image_h / 2, image_w / 2, CV_8UC1);
@@ -302,8 +302,8 @@ struct CpuPipeline::Impl {
     for (FinePeak& f : fine_peaks) f.configure(table, spec, opt.bayer, chroma_fixed);
   }
 
-  // The coarse search's frame: bin, find the blobs on the coarse grid, place
-  // them on this one.
+  // The coarse search's frame: bin, find peaks on the coarse grid, score
+  // this grid in regions around them and select its peaks.
   bool coarseProcess(const cv::Mat& raw, BlobList& out) {
     const auto t_start = std::chrono::steady_clock::now();
     pool.parallelFor(image_h / 4, [&](int b, int e) { binMosaicRows(raw, binned, b, e); });
