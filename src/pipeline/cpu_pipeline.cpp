@@ -63,6 +63,15 @@ constexpr double kWindowSideMm = 320;
 // threshold can go lower at little cost.
 constexpr double kCoarseThresholdFactor = 0.75;
 constexpr double kCoarseWeakThresholdFactor = 0.5;
+// The full grid's fast-ball pass runs on its streak lattice within this
+// many lattice cells (22 mm each at 5.6 mm) of each coarse candidate: the
+// two lattices are offset, and a candidate's centroid may be pulled toward
+// a colored neighbour (a ball against a robot).
+constexpr int kStreakSearchReach = 1;
+constexpr int kStreakPeaksPerSearch = (2 * kStreakSearchReach + 1) * (2 * kStreakSearchReach + 1);
+// A coarse candidate this close to a full-grid blob is that blob (its
+// full-grid peaks would lie within kStreakBlobDistanceMm of it).
+constexpr double kStreakCandidateAtBlobMm = 10;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -144,13 +153,11 @@ struct CpuPipeline::Impl {
   std::vector<int> window_counts;
   BlobSpacing coarse_reach;  // weak reach around the coarse pass's blobs, on this grid
   std::vector<FinePeakFound> found_peaks;
-  std::vector<Blob> streaks;  // the coarse pass's fast-ball candidates
+  // The full grid's fast-ball candidates found near the coarse pass's.
+  std::vector<FinePeak::Streak> fine_streaks;
   // The coarse pass keeps every fast-ball candidate, blob or not: its blobs
-  // may not survive the full grid's score, whose blobs then decide. It
-  // keeps each one's fit too (in candidate order), to place it on the full
-  // grid.
+  // may not survive the full grid's score, whose blobs then decide.
   bool streaks_unhidden = false;
-  std::vector<StreakFit> streak_fits;
 
   StageTimes times;
   std::string error;
@@ -278,7 +285,6 @@ struct CpuPipeline::Impl {
     co.weak_threshold *= kCoarseWeakThresholdFactor;
     coarse = std::make_unique<Impl>(CameraModel(c), field, co, &g);
     coarse->streaks_unhidden = true;
-    coarse->streak_fits.reserve(static_cast<size_t>(kMaxStreakCandidates) * pool.size());
     char note[128];
     std::snprintf(note, sizeof note, "; coarse search: peaks found on a %.1f mm grid, the %.1f mm grid scored around them",
                   g.scale, grid.scale);
@@ -297,9 +303,12 @@ struct CpuPipeline::Impl {
     window_peaks.assign(pool.size(), std::vector<FinePeakFound>(room));
     window_counts.assign(pool.size(), 0);
     found_peaks.reserve(room * pool.size());
-    streaks.reserve(kMaxStreakCandidates);
     fine_peaks.assign(pool.size(), {});
-    for (FinePeak& f : fine_peaks) f.configure(table, spec, opt.bayer, chroma_fixed);
+    for (FinePeak& f : fine_peaks) {
+      f.configure(table, spec, opt.bayer, chroma_fixed);
+      f.configureStreaks(streak, streak_mask.data(), kStreakSearchReach);
+    }
+    fine_streaks.reserve(static_cast<size_t>(kMaxStreakCandidates) * coarse->pool.size() * (1 + kStreakPeaksPerSearch));
   }
 
   // The coarse search's frame: bin, find peaks on the coarse grid, score
@@ -384,9 +393,11 @@ struct CpuPipeline::Impl {
     // object, weak peaks only within reach of a blob.
     spacing.clear();
     reach.clear();
-    streaks.clear();
+    // The coarse pass's fast-ball candidates, kept for after the blobs.
+    fine_streaks.clear();
     for (const Blob& b : out.blobs)
-      if (b.streak) streaks.push_back(b);
+      if (b.streak) fine_streaks.push_back({{}, 0, grid.toGrid(b.position)});
+    const size_t coarse_streaks = fine_streaks.size();
     out.blobs.clear();
     out.weak.clear();
     for (const FinePeakFound& f : found_peaks) {
@@ -405,17 +416,38 @@ struct CpuPipeline::Impl {
       if (strong) reach.keep(b.grid.x, b.grid.y);
       spacing.keep(b.grid.x, b.grid.y);
     }
-    // Fast balls, strongest first, where no blob is (as in the full pass),
-    // placed from this grid's chroma.
-    const double k = coarse->grid.scale / grid.scale;
-    for (size_t i = 0; i < streaks.size(); ++i) {
-      Blob& b = streaks[i];
-      StreakFit fit = coarse->streak_fits[i];
-      const GridPx c = grid.toGrid(coarse->grid.toField({fit.cx, fit.cy}));
-      if (nearBlob(out.blobs, c, grid.scale)) continue;  // that blob (spares the placement)
-      fit.cx = c.x, fit.cy = c.y, fit.along *= k, fit.across *= k;
-      b.grid = fine_peaks[0].streak(raw, gain, fit);
+    // Fast balls: the full pass's streak lattice peaks near the coarse
+    // candidates, then taken as the full pass takes them: strongest first,
+    // where no blob is.
+    const double at_blob2 = std::pow(kStreakCandidateAtBlobMm / grid.scale, 2);
+    for (size_t i = 0; i < coarse_streaks; ++i) {
+      const GridPx c = fine_streaks[i].at;
+      bool at_blob = false;
+      for (const Blob& b : out.blobs)
+        at_blob = at_blob || std::pow(b.grid.x - c.x, 2) + std::pow(b.grid.y - c.y, 2) < at_blob2;
+      if (at_blob) continue;
+      const size_t n = fine_streaks.size();
+      fine_streaks.resize(n + kStreakPeaksPerSearch);
+      fine_streaks.resize(n + fine_peaks[0].streaks(raw, gain, c, fine_streaks.data() + n, kStreakPeaksPerSearch));
+    }
+    fine_streaks.erase(fine_streaks.begin(), fine_streaks.begin() + static_cast<ptrdiff_t>(coarse_streaks));
+    std::sort(fine_streaks.begin(), fine_streaks.end(), [](const FinePeak::Streak& a, const FinePeak::Streak& b) {
+      if (a.peak.score != b.peak.score) return a.peak.score > b.peak.score;
+      return a.peak.y != b.peak.y ? a.peak.y < b.peak.y : a.peak.x < b.peak.x;
+    });
+    // A peak two searches found twice is the same lattice cell.
+    fine_streaks.erase(std::unique(fine_streaks.begin(), fine_streaks.end(),
+                                   [](const FinePeak::Streak& a, const FinePeak::Streak& b) {
+                                     return a.peak.x == b.peak.x && a.peak.y == b.peak.y;
+                                   }),
+                       fine_streaks.end());
+    for (const FinePeak::Streak& s : fine_streaks) {
+      if (nearBlob(out.blobs, streakPeakCenter(streak, s.peak), grid.scale)) continue;
+      Blob b;
+      b.grid = s.at;
       b.position = grid.toField(b.grid);
+      b.score = s.peak.score;
+      b.streak = true;
       meanColor(b.grid, b.rgb);
       if (acceptStreakBlob(out.blobs, b, grid.scale)) out.blobs.push_back(b);
     }
@@ -1007,7 +1039,6 @@ struct CpuPipeline::Impl {
   // it on the pool beside the peaks).
   void findStreaks(BlobList& out, bool scored) {
     const int lh = streak.lattice_height;
-    streak_fits.clear();
     if (!scored) {
       pool.parallelFor(lh, [&](int b, int e) {
         streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
@@ -1038,12 +1069,7 @@ struct CpuPipeline::Impl {
       blob.score = p.score;
       blob.streak = true;
       meanColor(blob.grid, blob.rgb);
-      if (streaks_unhidden) {
-        out.blobs.push_back(blob);
-        streak_fits.push_back(streakFit(streak_coarse.data(), streak, p, o));
-      } else if (acceptStreakBlob(out.blobs, blob, grid.scale)) {
-        out.blobs.push_back(blob);
-      }
+      if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
     }
   }
 

@@ -68,15 +68,71 @@ bool FinePeak::rectify(const cv::Mat& raw, float gain, int x0, int y0, int w, in
   return true;
 }
 
-GridPx FinePeak::streak(const cv::Mat& raw, float gain, const StreakFit& fit) {
-  const RemapTable& t = *table_;
-  const int reach = static_cast<int>(std::ceil(std::hypot(fit.along, fit.across))) + 1;
-  const int x0 = std::max(0, static_cast<int>(std::floor(fit.cx)) - reach);
-  const int y0 = std::max(0, static_cast<int>(std::floor(fit.cy)) - reach);
-  const int w = std::min({t.width, x0 + 2 * reach + 2, x0 + n_}) - x0;
-  const int h = std::min({t.height, y0 + 2 * reach + 2, y0 + n_}) - y0;
-  if (!fit.ok || w <= 0 || h <= 0 || !rectify(raw, gain, x0, y0, w, h)) return {fit.cx, fit.cy};
-  return streakCentroid(fit, ca_.data(), cb_.data(), x0, y0, w, h);
+void FinePeak::configureStreaks(const StreakWindows& w, const uint8_t* lattice_mask, int reach) {
+  streak_ = w;
+  lattice_mask_ = lattice_mask;
+  reach_ = reach;
+  // The patch: the searched lattice cells, their neighbours (the peak
+  // test) and the footprint's margin on every side, in whole lattice cells
+  // so that its lattice is the grid's.
+  const int margin = (w.margin + kStreakLatticeStep - 1) / kStreakLatticeStep;
+  side_ = 2 * (reach + 1 + margin) + 1;
+  patch_ = w;
+  patch_.coarse_width = patch_.coarse_height = side_ * kStreakLatticeStep;
+  patch_.lattice_width = patch_.lattice_height = side_;
+  const size_t lattice = static_cast<size_t>(side_) * side_;
+  patch_coarse_.assign(2 * lattice * kStreakLatticeStep * kStreakLatticeStep, 0);
+  patch_score_.assign(lattice, 0);
+  patch_orient_.assign(lattice, 0);
+  patch_mask_.assign(lattice, 0);
+  patch_peaks_.resize(lattice);
+  // Rectified chroma for the whole patch.
+  const int cells = patch_.coarse_width * w.factor;
+  if (cells > n_) {
+    n_ = cells;
+    const size_t n = static_cast<size_t>(n_) * n_;
+    index_.assign(n, 0);
+    ca_.assign(n, 0);
+    cb_.assign(n, 0);
+    score_.assign(n, 0);
+    box_.assign(static_cast<size_t>(table_->src_width) * (2 * n_ + 2), 0);
+  }
+}
+
+int FinePeak::streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int capacity) {
+  const StreakWindows& w = streak_;
+  const int f = w.factor, cell = f * kStreakLatticeStep;  // grid cells per lattice cell
+  // The patch's first lattice cell, kept inside the grid's lattice.
+  const int max_x = w.coarse_width / kStreakLatticeStep - side_, max_y = w.coarse_height / kStreakLatticeStep - side_;
+  if (side_ == 0 || max_x < 0 || max_y < 0) return 0;
+  const int li = static_cast<int>(std::lround((c.x - 0.5 * (f - 1)) / cell));
+  const int lj = static_cast<int>(std::lround((c.y - 0.5 * (f - 1)) / cell));
+  const int half = side_ / 2;
+  const int lx0 = std::clamp(li - half, 0, max_x), ly0 = std::clamp(lj - half, 0, max_y);
+  const int side = patch_.coarse_width * f;
+  if (!rectify(raw, gain, lx0 * cell, ly0 * cell, side, side)) return 0;
+  streakCoarseRows(ca_.data(), cb_.data(), side, patch_, patch_coarse_.data(), 0, patch_.coarse_height);
+  // Only the searched cells' rows and their neighbours are scored.
+  const int sx0 = std::max(li - reach_, lx0 + 1) - lx0, sx1 = std::min(li + reach_, lx0 + side_ - 2) - lx0;
+  const int sy0 = std::max(lj - reach_, ly0 + 1) - ly0, sy1 = std::min(lj + reach_, ly0 + side_ - 2) - ly0;
+  if (sx0 > sx1 || sy0 > sy1) return 0;
+  streakScoreRows(patch_coarse_.data(), patch_, patch_score_.data(), patch_orient_.data(), sy0 - 1, sy1 + 2);
+  std::fill(patch_mask_.begin(), patch_mask_.end(), uint8_t{0});
+  for (int y = sy0; y <= sy1; ++y)
+    for (int x = sx0; x <= sx1; ++x)
+      patch_mask_[static_cast<size_t>(y) * side_ + x] =
+          lattice_mask_[static_cast<size_t>(ly0 + y) * w.lattice_width + lx0 + x];
+  const int n = findStreakPeakRows(patch_score_.data(), patch_mask_.data(), patch_, patch_peaks_.data(), 0,
+                                   static_cast<int>(patch_peaks_.size()), sy0, sy1 + 1);
+  int count = 0;
+  for (int i = 0; i < n && count < capacity; ++i) {
+    const StreakPeak& p = patch_peaks_[i];
+    const int o = patch_orient_[static_cast<size_t>(p.y) * side_ + p.x];
+    const GridPx at = streakCentroid(streakFit(patch_coarse_.data(), patch_, p, o), ca_.data(), cb_.data(), 0, 0,
+                                     side, side);
+    out[count++] = {{p.x + lx0, p.y + ly0, p.score}, o, {at.x + lx0 * cell, at.y + ly0 * cell}};
+  }
+  return count;
 }
 
 int FinePeak::peaks(const cv::Mat& raw, float gain, const CellRect& region, const uint8_t* mask,

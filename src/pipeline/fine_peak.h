@@ -54,9 +54,22 @@ class FinePeak {
   // appended to out[0, capacity). Returns how many.
   int peaks(const cv::Mat& raw, float gain, const CellRect& region, const uint8_t* mask, const Thresholds& th,
             const BlobSpacing& near, FinePeakFound* out, int capacity);
-  // A fast ball's place on this grid: streakCentroid of `fit` (this grid's
-  // cells) over chroma rectified here.
-  GridPx streak(const cv::Mat& raw, float gain, const StreakFit& fit);
+  // The fast-ball pass of this grid near cell `c`: sizes the scratch for
+  // this grid's streak footprint `w` and a search `reach` lattice cells
+  // either side of c's lattice cell. `lattice_mask`: the grid's
+  // streakPeakMask.
+  void configureStreaks(const StreakWindows& w, const uint8_t* lattice_mask, int reach);
+  // The streak lattice peaks findStreakPeakRows finds on the whole grid
+  // whose lattice cell lies within the reach of c's, scored as
+  // streakScoreRows scores them from chroma rectified here (the same chroma,
+  // so the same scores), each placed by refineStreak. Appended to
+  // out[0, capacity); returns how many.
+  struct Streak {
+    StreakPeak peak;  // the whole grid's lattice cell
+    int orientation = 0;
+    GridPx at;
+  };
+  int streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int capacity);
 
  private:
   // Chroma of window cells [x0, x0 + w) x [y0, y0 + h) into ca_, cb_ (row
@@ -71,6 +84,13 @@ class FinePeak {
   std::vector<uint32_t> box_, ring_;
   std::vector<int32_t> index_;
   std::vector<float> ca_, cb_, score_;
+  // The streak search: the grid's footprint and mask, and the patch's.
+  StreakWindows streak_, patch_;
+  const uint8_t* lattice_mask_ = nullptr;
+  int reach_ = 0, side_ = 0;  // lattice cells: search reach, patch side
+  std::vector<float> patch_coarse_, patch_score_;
+  std::vector<uint8_t> patch_orient_, patch_mask_;
+  std::vector<StreakPeak> patch_peaks_;
 };
 
 }  // namespace dv
