@@ -39,7 +39,8 @@ TEST(MosaicBinning, EachSiteIsTheMeanOfItsFourPixelsInTheBlock) {
 
 // A 768x640 camera over the first robot of a preset (after `change`), at the
 // preset camera's millimetres per pixel (a 5.6 mm grid: the coarse search
-// runs): straight down, or from the preset camera's place (its parallax).
+// runs): straight down, or from the preset camera's place (its parallax);
+// or the preset's own camera (`whole`).
 struct PresetFrame {
   CameraModel cam{CameraCalibration{}};
   FieldModel field;
@@ -47,9 +48,14 @@ struct PresetFrame {
 };
 
 PresetFrame presetFrame(const std::string& name, const std::function<void(SceneSpec&)>& change = {},
-                        bool overhead = true) {
+                        bool overhead = true, bool whole = false) {
   SceneSpec spec = loadScene(std::string(DV_SOURCE_DIR) + "/config/scenes/" + name + ".yaml");
   if (change) change(spec);
+  spec.frames = 1;
+  if (whole) {
+    spec.cameras.resize(1);
+    return {CameraModel(spec.cameras[0].calib), spec.field, Renderer(spec).render(0, 0).image};
+  }
   const auto& big = spec.cameras.at(0).calib;
   const Eigen::Vector3d c = CameraModel(big).position();
   const FieldMm t = spec.robots.at(0).position;
@@ -65,12 +71,18 @@ PresetFrame presetFrame(const std::string& name, const std::function<void(SceneS
 class CoarseSearch : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CoarseSearch, FindsTheFullSearchsBlobsAtTheirPlaces) {
-  const PresetFrame f = presetFrame(GetParam());
+  // The side view from its stand: a sample per pixel and, far off, a
+  // whitened gradient.
+  const bool side = GetParam() == "side_view";
+  const PresetFrame f = presetFrame(GetParam(), {}, /*overhead=*/true, /*whole=*/side);
   PipelineOptions full_opt;
   full_opt.coarse_search = false;
   CpuPipeline coarse(f.cam, f.field, {}), full(f.cam, f.field, full_opt);
   ASSERT_NE(coarse.samplingNote().find("coarse search"), std::string::npos) << coarse.samplingNote();
   ASSERT_EQ(full.samplingNote().find("coarse search"), std::string::npos) << full.samplingNote();
+  if (side) {
+    ASSERT_NE(coarse.samplingNote().find("sampling full"), std::string::npos) << coarse.samplingNote();
+  }
   BlobList a, b;
   ASSERT_TRUE(coarse.process(f.image, a)) << coarse.lastError();
   ASSERT_TRUE(full.process(f.image, b)) << full.lastError();
@@ -151,7 +163,8 @@ TEST(CoarseSearch, FindsTheFullSearchsFastBallsNearTheBall) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, CoarseSearch,
-                         ::testing::Values("top_down_div_b_half", "dark_noisy", "uneven_light", "gray_carpet"));
+                         ::testing::Values("top_down_div_b_half", "dark_noisy", "uneven_light", "gray_carpet",
+                                           "side_view"));
 
 }  // namespace
 }  // namespace dv

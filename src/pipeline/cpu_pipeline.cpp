@@ -252,21 +252,27 @@ struct CpuPipeline::Impl {
       rank.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
       merged.reserve(static_cast<size_t>(blob_room) * bands.bands.size());
     }
-    if (banded && !forms.any && opt.coarse_search && image_w % 4 == 0 && image_h % 4 == 0 &&
-        2 * grid.scale <= kMaxCoarseGridMm)
-      makeCoarse(field, w);
+    if (opt.coarse_search && 2 * grid.scale <= kMaxCoarseGridMm) {
+      if (banded && !forms.any && image_w % 4 == 0 && image_h % 4 == 0) makeCoarse(field, w, /*binned=*/true);
+      else if (full_bayer && opt.score == BlobScoreKind::QuadrantMin) makeCoarse(field, w, /*binned=*/false);
+    }
   }
 
-  // The camera at half the image size (each pixel a 2x2 cell of the full
-  // image; pixel centers at integer coordinates), its pipeline on the grid
-  // of twice the spacing whose cells cover 2x2 cells of this one.
-  void makeCoarse(const FieldModel& field, const ScoreWindows& w) {
+  // The coarse pass: its pipeline on the grid of twice the spacing, whose
+  // cells cover 2x2 cells of this one. `binned`: on the mosaic binned to
+  // half size, seen by the camera at half the image size (each pixel a 2x2
+  // cell of the full image; pixel centers at integer coordinates). Else
+  // (full Bayer sampling, a camera that sees far) on the frame itself, a
+  // sample per pixel as here: its samples are then this grid's too.
+  void makeCoarse(const FieldModel& field, const ScoreWindows& w, bool binned_mosaic) {
     CameraCalibration c = camera.calibration();
-    c.focal_length *= 0.5;
-    c.principal_point_x = (c.principal_point_x - 0.5) * 0.5;
-    c.principal_point_y = (c.principal_point_y - 0.5) * 0.5;
-    c.image_width /= 2;
-    c.image_height /= 2;
+    if (binned_mosaic) {
+      c.focal_length *= 0.5;
+      c.principal_point_x = (c.principal_point_x - 0.5) * 0.5;
+      c.principal_point_y = (c.principal_point_y - 0.5) * 0.5;
+      c.image_width /= 2;
+      c.image_height /= 2;
+    }
     // Padded by the coarse score's margin on every side: cells without a
     // full score window are then outside this grid, so blobs are found as
     // close to its edges as here (cells outside the image are never peaks).
@@ -279,7 +285,7 @@ struct CpuPipeline::Impl {
     g.y0 = grid.y0 - 0.5 * grid.scale + pad * g.scale;
     PipelineOptions co = opt;
     co.coarse_search = false;
-    co.bayer_sampling = BayerSampling::Subsample;
+    co.bayer_sampling = binned_mosaic ? BayerSampling::Subsample : BayerSampling::Full;
     // Peaks a little below the thresholds too: the full grid's score decides.
     co.threshold *= kCoarseThresholdFactor;
     co.weak_threshold *= kCoarseWeakThresholdFactor;
@@ -289,7 +295,16 @@ struct CpuPipeline::Impl {
     std::snprintf(note, sizeof note, "; coarse search: peaks found on a %.1f mm grid, the %.1f mm grid scored around them",
                   g.scale, grid.scale);
     sampling_note += note;
-    binned.create(image_h / 2, image_w / 2, CV_8UC1);
+    if (binned_mosaic) {
+      binned.create(image_h / 2, image_w / 2, CV_8UC1);
+    } else {
+      // The coarse pass makes the samples this grid reads too.
+      RemapTable& ct = coarse->table;
+      ct.x_begin = std::min(ct.x_begin, table.x_begin), ct.x_end = std::max(ct.x_end, table.x_end);
+      ct.y_begin = std::min(ct.y_begin, table.y_begin), ct.y_end = std::max(ct.y_end, table.y_end);
+      packed.clear();
+      packed.shrink_to_fit();
+    }
     FinePeakSpec spec;
     spec.max_side = static_cast<int>(std::ceil(kWindowSideMm / grid.scale));
     spec.margin = w.margin;
@@ -306,6 +321,7 @@ struct CpuPipeline::Impl {
     fine_peaks.assign(pool.size(), {});
     for (FinePeak& f : fine_peaks) {
       f.configure(table, spec, opt.bayer, chroma_fixed);
+      if (!binned_mosaic) f.usePlane(coarse->packed.data(), forms);
       f.configureStreaks(streak, streak_mask.data(), kStreakSearchReach);
     }
     fine_streaks.reserve(static_cast<size_t>(kMaxStreakCandidates) * coarse->pool.size() * (1 + kStreakPeaksPerSearch));
@@ -315,9 +331,9 @@ struct CpuPipeline::Impl {
   // this grid in regions around them and select its peaks.
   bool coarseProcess(const cv::Mat& raw, BlobList& out) {
     const auto t_start = std::chrono::steady_clock::now();
-    pool.parallelFor(image_h / 4, [&](int b, int e) { binMosaicRows(raw, binned, b, e); });
+    if (!binned.empty()) pool.parallelFor(image_h / 4, [&](int b, int e) { binMosaicRows(raw, binned, b, e); });
     const double bin_ms = msSince(t_start);
-    if (!coarse->process(binned, out)) {
+    if (!coarse->process(binned.empty() ? raw : binned, out)) {
       error = coarse->error;
       return false;
     }

@@ -17,7 +17,13 @@ void FinePeak::configure(const RemapTable& table, const FinePeakSpec& spec, Baye
   spec_ = spec;
   pattern_ = pattern;
   k_ = k;
-  n_ = spec.max_side + 2 * spec.margin;
+  n_ = 0;
+  reserve(spec.max_side + 2 * spec.margin);
+}
+
+void FinePeak::reserve(int side) {
+  if (side <= n_) return;
+  n_ = side;
   const size_t cells = static_cast<size_t>(n_) * n_;
   index_.assign(cells, 0);
   ca_.assign(cells, 0);
@@ -26,12 +32,54 @@ void FinePeak::configure(const RemapTable& table, const FinePeakSpec& spec, Baye
   // Samples under the window, full image rows: the cells are about a
   // sample apart, so twice the window's side (plus the bilinear neighbour)
   // in rows holds them unless the grid is much finer than the samples;
-  // larger boxes are refused.
-  box_.assign(static_cast<size_t>(table.src_width) * (2 * n_ + 2), 0);
+  // larger boxes are refused. None under full sampling (the frame's plane).
+  if (!plane_) box_.assign(static_cast<size_t>(table_->src_width) * (2 * n_ + 2), 0);
+  const int blocks = (n_ + kFormBlock - 1) / kFormBlock + 1;
+  window_forms_.coef.assign(6 * static_cast<size_t>(blocks) * blocks, 0.f);
+  window_forms_.plain.assign(static_cast<size_t>(blocks) * blocks, 1);
+  window_forms_.plain_row.assign(blocks, 1);
+}
+
+void FinePeak::usePlane(const uint32_t* plane, const GradientForms& forms) {
+  plane_ = plane;
+  forms_ = forms.any ? &forms : nullptr;
+  box_.clear();
+  box_.shrink_to_fit();
+  // Room to move a window's origin back onto a block corner.
+  if (forms_) reserve(n_ + kFormBlock);
+}
+
+// The grid's forms for window cells [x0, x0 + w) x [y0, y0 + h), x0 and y0
+// on block corners, into window_forms_ (window coordinates).
+const GradientForms* FinePeak::windowForms(int x0, int y0, int w, int h) {
+  if (!forms_) return nullptr;
+  GradientForms& f = window_forms_;
+  const int bx0 = x0 / kFormBlock, by0 = y0 / kFormBlock;
+  f.blocks_x = std::min(forms_->blocks_x - bx0, (w + kFormBlock - 1) / kFormBlock);
+  f.blocks_y = std::min(forms_->blocks_y - by0, (h + kFormBlock - 1) / kFormBlock);
+  f.any = false;
+  for (int by = 0; by < f.blocks_y; ++by) {
+    const size_t from = static_cast<size_t>(by0 + by) * forms_->blocks_x + bx0;
+    const size_t to = static_cast<size_t>(by) * f.blocks_x;
+    std::copy_n(forms_->coef.data() + 6 * from, 6 * f.blocks_x, f.coef.data() + 6 * to);
+    std::copy_n(forms_->plain.data() + from, f.blocks_x, f.plain.data() + to);
+    f.plain_row[by] = static_cast<uint8_t>(
+        std::all_of(f.plain.data() + to, f.plain.data() + to + f.blocks_x, [](uint8_t p) { return p != 0; }));
+    f.any = f.any || !f.plain_row[by];
+  }
+  return f.any ? &f : nullptr;
 }
 
 bool FinePeak::rectify(const cv::Mat& raw, float gain, int x0, int y0, int w, int h) {
   const RemapTable& t = *table_;
+  if (plane_) {  // the frame's samples, as the full pass reads them
+    for (int y = 0; y < h; ++y) {
+      const size_t k = static_cast<size_t>(y0 + y) * t.width + x0;
+      rectifyChromaCells(t.index.data() + k, t.frac.data() + k, t.src_width, plane_, gain,
+                         ca_.data() + static_cast<size_t>(y) * w, cb_.data() + static_cast<size_t>(y) * w, w);
+    }
+    return true;
+  }
   // The window's table rows lie a grid row apart: ask for all of them now,
   // so that they arrive while the box is made.
   for (int y = 0; y < h; ++y) {
@@ -87,16 +135,7 @@ void FinePeak::configureStreaks(const StreakWindows& w, const uint8_t* lattice_m
   patch_mask_.assign(lattice, 0);
   patch_peaks_.resize(lattice);
   // Rectified chroma for the whole patch.
-  const int cells = patch_.coarse_width * w.factor;
-  if (cells > n_) {
-    n_ = cells;
-    const size_t n = static_cast<size_t>(n_) * n_;
-    index_.assign(n, 0);
-    ca_.assign(n, 0);
-    cb_.assign(n, 0);
-    score_.assign(n, 0);
-    box_.assign(static_cast<size_t>(table_->src_width) * (2 * n_ + 2), 0);
-  }
+  reserve(patch_.coarse_width * w.factor);
 }
 
 int FinePeak::streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int capacity) {
@@ -141,12 +180,15 @@ int FinePeak::peaks(const cv::Mat& raw, float gain, const CellRect& region, cons
   const int m = spec_.margin;
   // The window: the region and the margin its scores need, inside the grid
   // (cells next to the grid's edges have no score in the full pass either).
-  const int x0 = std::max(0, region.x0 - m), y0 = std::max(0, region.y0 - m);
+  // With forms, its origin on a block corner (the forms are per block).
+  const int align = forms_ ? kFormBlock : 1;
+  const int x0 = std::max(0, region.x0 - m) / align * align, y0 = std::max(0, region.y0 - m) / align * align;
   const int w = std::min({t.width, region.x1 + m, x0 + n_}) - x0;
   const int h = std::min({t.height, region.y1 + m, y0 + n_}) - y0;
   if (w <= 2 * m || h <= 2 * m || !rectify(raw, gain, x0, y0, w, h)) return 0;
+  const GradientForms* forms = windowForms(x0, y0, w, h);
   quadrantMinScoreFromChroma(ca_.data(), cb_.data(), w, h, spec_.gradient_scale, spec_.quadrant_r, spec_.inner_q,
-                             score_.data(), 0, h, ring_);
+                             score_.data(), 0, h, ring_, forms);
 
   // The full pass's 4-way peaks in the region, among window cells with a
   // full score window.
@@ -160,9 +202,13 @@ int FinePeak::peaks(const cv::Mat& raw, float gain, const CellRect& region, cons
       if (!mask[static_cast<size_t>(y0 + y) * t.width + x0 + x]) continue;
       // Below the raw score a blob needs, only a weak peak near a blob.
       if (!(*c > th.raw_strong) && !near.nearKept(x0 + x, y0 + y)) continue;
-      const float r = *c / (windowGradientEnergy(ca_.data(), cb_.data(), w, spec_.gradient_scale, x, y,
-                                                 spec_.energy_r, *c / th.low) +
-                            kEnergyFloor);
+      const float stop = *c / th.low;
+      const float energy =
+          !forms || forms->plainAt(x, y)
+              ? windowGradientEnergy(ca_.data(), cb_.data(), w, spec_.gradient_scale, x, y, spec_.energy_r, stop)
+              : windowGradientEnergyForm(ca_.data(), cb_.data(), w, spec_.gradient_scale, x, y, spec_.energy_r,
+                                         forms->block(x, y) + 3, stop);
+      const float r = *c / (energy + kEnergyFloor);
       if (!(r > th.low)) continue;
       if (count == capacity) return count;
       const GridPx p = interpolatePeak(score_.data(), w, x, y);

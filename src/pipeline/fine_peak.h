@@ -5,7 +5,9 @@
 // product, quadrant score and ratio test as the full pass, and its peaks are
 // taken with the full pass's 4-way test and quadratic interpolation. Inside
 // the window the scores are those the full pass computes, so the peaks are
-// the full grid's.
+// the full grid's. Under full Bayer sampling (a sample per pixel) the window
+// reads the samples the coarse pass made for the whole frame, and where the
+// view stretches blobs it whitens the gradient as the full pass does.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/streak_score.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 
@@ -42,6 +45,10 @@ class FinePeak {
   // table: the full grid's remap table for Bayer 2x2 subsampling (not
   // transposed). Sizes the scratch once.
   void configure(const RemapTable& table, const FinePeakSpec& spec, BayerPattern pattern, const ChromaFixed& k);
+  // Full Bayer sampling: windows are rectified from `plane`, the frame's
+  // packed samples (the table's layout, bayer_full.h), and scored with the
+  // grid's `forms` (view_stretch.h). Both must outlive this object.
+  void usePlane(const uint32_t* plane, const GradientForms& forms);
   int maxSide() const { return spec_.max_side; }
   struct Thresholds {
     float raw_low = 0;     // raw score of a weak peak (weak threshold x energy floor)
@@ -75,6 +82,9 @@ class FinePeak {
   // Chroma of window cells [x0, x0 + w) x [y0, y0 + h) into ca_, cb_ (row
   // stride w); false where its samples do not fit the box.
   bool rectify(const cv::Mat& raw, float gain, int x0, int y0, int w, int h);
+  // Scratch for windows up to `side` cells a side.
+  void reserve(int side);
+  const GradientForms* windowForms(int x0, int y0, int w, int h);
 
   const RemapTable* table_ = nullptr;
   FinePeakSpec spec_;
@@ -84,6 +94,11 @@ class FinePeak {
   std::vector<uint32_t> box_, ring_;
   std::vector<int32_t> index_;
   std::vector<float> ca_, cb_, score_;
+  // Full Bayer sampling: the frame's samples, the grid's forms and the
+  // window's share of them (its origin on a block corner).
+  const uint32_t* plane_ = nullptr;
+  const GradientForms* forms_ = nullptr;
+  GradientForms window_forms_;
   // The streak search: the grid's footprint and mask, and the patch's.
   StreakWindows streak_, patch_;
   const uint8_t* lattice_mask_ = nullptr;
