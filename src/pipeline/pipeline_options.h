@@ -41,10 +41,11 @@ struct PipelineOptions {
   int max_weak_blobs = 1000;
   int threads = 0;  // 0 = all cores
   // Coarse search: where the grid is fine (a 2448 x 2048 camera from above:
-  // 5.6 mm), peaks are looked for on a grid of twice the spacing from the
-  // mosaic binned 2x2 cells at a time (a quarter of the cells), and the full
-  // grid is scored only in regions around them (fine_peak.h), whose peaks
-  // are the blobs. The CPU pipeline only; false: the full grid everywhere.
+  // 5.6 mm), peaks are looked for on a grid of twice the spacing (a quarter
+  // of the cells; under 2x2 subsampling from the mosaic binned 2x2 cells at
+  // a time, under full sampling from the same samples), and the full grid is
+  // scored only in regions around them (fine_peak.h), whose peaks are the
+  // blobs. The CPU pipeline only; false: the full grid everywhere.
   bool coarse_search = true;
 };
 
