@@ -153,7 +153,10 @@ struct CpuPipeline::Impl {
   std::vector<int> window_counts;
   BlobSpacing coarse_reach;  // weak reach around the coarse pass's blobs, on this grid
   std::vector<FinePeakFound> found_peaks;
-  // The full grid's fast-ball candidates found near the coarse pass's.
+  // The coarse pass's fast-ball candidates (this grid's cells), the full
+  // grid's found near them per pool part, and all of those.
+  std::vector<GridPx> streak_centers;
+  std::vector<std::vector<FinePeak::Streak>> part_streaks;
   std::vector<FinePeak::Streak> fine_streaks;
   // The coarse pass keeps every fast-ball candidate, blob or not: its blobs
   // may not survive the full grid's score, whose blobs then decide.
@@ -324,7 +327,11 @@ struct CpuPipeline::Impl {
       if (!binned_mosaic) f.usePlane(coarse->packed.data(), forms);
       f.configureStreaks(streak, streak_mask.data(), kStreakSearchReach);
     }
-    fine_streaks.reserve(static_cast<size_t>(kMaxStreakCandidates) * coarse->pool.size() * (1 + kStreakPeaksPerSearch));
+    const size_t coarse_streaks = static_cast<size_t>(kMaxStreakCandidates) * coarse->pool.size();
+    streak_centers.reserve(coarse_streaks);
+    part_streaks.assign(pool.size(), {});
+    for (auto& list : part_streaks) list.reserve(coarse_streaks * kStreakPeaksPerSearch);
+    fine_streaks.reserve(coarse_streaks * kStreakPeaksPerSearch);
   }
 
   // The coarse search's frame: bin, find peaks on the coarse grid, score
@@ -410,10 +417,9 @@ struct CpuPipeline::Impl {
     spacing.clear();
     reach.clear();
     // The coarse pass's fast-ball candidates, kept for after the blobs.
-    fine_streaks.clear();
+    streak_centers.clear();
     for (const Blob& b : out.blobs)
-      if (b.streak) fine_streaks.push_back({{}, 0, grid.toGrid(b.position)});
-    const size_t coarse_streaks = fine_streaks.size();
+      if (b.streak) streak_centers.push_back(grid.toGrid(b.position));
     out.blobs.clear();
     out.weak.clear();
     for (const FinePeakFound& f : found_peaks) {
@@ -436,17 +442,23 @@ struct CpuPipeline::Impl {
     // candidates, then taken as the full pass takes them: strongest first,
     // where no blob is.
     const double at_blob2 = std::pow(kStreakCandidateAtBlobMm / grid.scale, 2);
-    for (size_t i = 0; i < coarse_streaks; ++i) {
-      const GridPx c = fine_streaks[i].at;
-      bool at_blob = false;
-      for (const Blob& b : out.blobs)
-        at_blob = at_blob || std::pow(b.grid.x - c.x, 2) + std::pow(b.grid.y - c.y, 2) < at_blob2;
-      if (at_blob) continue;
-      const size_t n = fine_streaks.size();
-      fine_streaks.resize(n + kStreakPeaksPerSearch);
-      fine_streaks.resize(n + fine_peaks[0].streaks(raw, gain, c, fine_streaks.data() + n, kStreakPeaksPerSearch));
-    }
-    fine_streaks.erase(fine_streaks.begin(), fine_streaks.begin() + static_cast<ptrdiff_t>(coarse_streaks));
+    forParts(static_cast<int>(streak_centers.size()), [&](int p, int b, int e) {
+      std::vector<FinePeak::Streak>& list = part_streaks[p];
+      list.clear();
+      for (int i = b; i < e; ++i) {
+        const GridPx c = streak_centers[i];
+        bool at_blob = false;
+        for (const Blob& blob : out.blobs)
+          at_blob = at_blob || std::pow(blob.grid.x - c.x, 2) + std::pow(blob.grid.y - c.y, 2) < at_blob2;
+        if (at_blob) continue;
+        const size_t n = list.size();
+        list.resize(n + kStreakPeaksPerSearch);
+        list.resize(n + fine_peaks[p].streaks(raw, gain, c, list.data() + n, kStreakPeaksPerSearch));
+      }
+    });
+    fine_streaks.clear();
+    for (const std::vector<FinePeak::Streak>& list : part_streaks)
+      fine_streaks.insert(fine_streaks.end(), list.begin(), list.end());
     std::sort(fine_streaks.begin(), fine_streaks.end(), [](const FinePeak::Streak& a, const FinePeak::Streak& b) {
       if (a.peak.score != b.peak.score) return a.peak.score > b.peak.score;
       return a.peak.y != b.peak.y ? a.peak.y < b.peak.y : a.peak.x < b.peak.x;

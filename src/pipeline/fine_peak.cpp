@@ -49,6 +49,17 @@ void FinePeak::usePlane(const uint32_t* plane, const GradientForms& forms) {
   if (forms_) reserve(n_ + kFormBlock);
 }
 
+bool FinePeak::plainOver(int x0, int y0, int x1, int y1) const {
+  const int bx1 = std::min(forms_->blocks_x, (x1 + kFormBlock - 1) / kFormBlock);
+  const int by1 = std::min(forms_->blocks_y, (y1 + kFormBlock - 1) / kFormBlock);
+  for (int by = y0 / kFormBlock; by < by1; ++by) {
+    if (forms_->plain_row[by]) continue;
+    for (int bx = x0 / kFormBlock; bx < bx1; ++bx)
+      if (!forms_->plain[static_cast<size_t>(by) * forms_->blocks_x + bx]) return false;
+  }
+  return true;
+}
+
 // The grid's forms for window cells [x0, x0 + w) x [y0, y0 + h), x0 and y0
 // on block corners, into window_forms_ (window coordinates).
 const GradientForms* FinePeak::windowForms(int x0, int y0, int w, int h) {
@@ -180,13 +191,15 @@ int FinePeak::peaks(const cv::Mat& raw, float gain, const CellRect& region, cons
   const int m = spec_.margin;
   // The window: the region and the margin its scores need, inside the grid
   // (cells next to the grid's edges have no score in the full pass either).
-  // With forms, its origin on a block corner (the forms are per block).
-  const int align = forms_ ? kFormBlock : 1;
-  const int x0 = std::max(0, region.x0 - m) / align * align, y0 = std::max(0, region.y0 - m) / align * align;
+  int x0 = std::max(0, region.x0 - m), y0 = std::max(0, region.y0 - m);
+  // Where it reaches a whitened block, its origin moves back onto a block
+  // corner (the forms are per block).
+  const bool whiten = forms_ && !plainOver(x0, y0, region.x1 + m, region.y1 + m);
+  if (whiten) x0 = x0 / kFormBlock * kFormBlock, y0 = y0 / kFormBlock * kFormBlock;
   const int w = std::min({t.width, region.x1 + m, x0 + n_}) - x0;
   const int h = std::min({t.height, region.y1 + m, y0 + n_}) - y0;
   if (w <= 2 * m || h <= 2 * m || !rectify(raw, gain, x0, y0, w, h)) return 0;
-  const GradientForms* forms = windowForms(x0, y0, w, h);
+  const GradientForms* forms = whiten ? windowForms(x0, y0, w, h) : nullptr;
   quadrantMinScoreFromChroma(ca_.data(), cb_.data(), w, h, spec_.gradient_scale, spec_.quadrant_r, spec_.inner_q,
                              score_.data(), 0, h, ring_, forms);
 

@@ -85,6 +85,8 @@ class FinePeak {
   // Scratch for windows up to `side` cells a side.
   void reserve(int side);
   const GradientForms* windowForms(int x0, int y0, int w, int h);
+  // Whether every block under cells [x0, x1) x [y0, y1) is plain.
+  bool plainOver(int x0, int y0, int x1, int y1) const;
 
   const RemapTable* table_ = nullptr;
   FinePeakSpec spec_;
