@@ -42,8 +42,8 @@ struct FinePeakFound {
 
 class FinePeak {
  public:
-  // table: the full grid's remap table for Bayer 2x2 subsampling (not
-  // transposed). Sizes the scratch once.
+  // table: the full grid's remap table (not transposed), for Bayer 2x2
+  // subsampling unless usePlane follows. Sizes the scratch once.
   void configure(const RemapTable& table, const FinePeakSpec& spec, BayerPattern pattern, const ChromaFixed& k);
   // Full Bayer sampling: windows are rectified from `plane`, the frame's
   // packed samples (the table's layout, bayer_full.h), and scored with the
