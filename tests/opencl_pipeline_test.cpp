@@ -336,7 +336,7 @@ TEST(OpenClStages, FullBayerSamplingMatchesTheCpuFunction) {
   const cv::Mat raw = scene.render(cam, BayerPattern::GRBG);
   PipelineOptions opt;
   opt.bayer = BayerPattern::GRBG;
-  CpuPipeline cpu(cam, field, opt);
+  CpuPipeline cpu(cam, field, fullSearch(opt));
   OpenClPipeline ocl(cam, field, opt, *testDevice());
   ASSERT_EQ(cpu.options().bayer_sampling, BayerSampling::Full) << cpu.samplingNote();
   ASSERT_EQ(ocl.options().bayer_sampling, BayerSampling::Full);
