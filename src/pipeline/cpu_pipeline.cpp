@@ -459,10 +459,8 @@ struct CpuPipeline::Impl {
     fine_streaks.clear();
     for (const std::vector<FinePeak::Streak>& list : part_streaks)
       fine_streaks.insert(fine_streaks.end(), list.begin(), list.end());
-    std::sort(fine_streaks.begin(), fine_streaks.end(), [](const FinePeak::Streak& a, const FinePeak::Streak& b) {
-      if (a.peak.score != b.peak.score) return a.peak.score > b.peak.score;
-      return a.peak.y != b.peak.y ? a.peak.y < b.peak.y : a.peak.x < b.peak.x;
-    });
+    std::sort(fine_streaks.begin(), fine_streaks.end(),
+              [](const FinePeak::Streak& a, const FinePeak::Streak& b) { return strongerStreak(a.peak, b.peak); });
     // A peak two searches found twice is the same lattice cell.
     fine_streaks.erase(std::unique(fine_streaks.begin(), fine_streaks.end(),
                                    [](const FinePeak::Streak& a, const FinePeak::Streak& b) {
@@ -471,12 +469,7 @@ struct CpuPipeline::Impl {
                        fine_streaks.end());
     for (const FinePeak::Streak& s : fine_streaks) {
       if (nearBlob(out.blobs, streakPeakCenter(streak, s.peak), grid.scale)) continue;
-      Blob b;
-      b.grid = s.at;
-      b.position = grid.toField(b.grid);
-      b.score = s.peak.score;
-      b.streak = true;
-      meanColor(b.grid, b.rgb);
+      const Blob b = streakBlob(s.at, s.peak.score);
       if (acceptStreakBlob(out.blobs, b, grid.scale)) out.blobs.push_back(b);
     }
     times = coarse->times;
@@ -1084,21 +1077,25 @@ struct CpuPipeline::Impl {
     for (size_t p = 0; p < streak_candidates.size(); ++p)
       streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
                            streak_candidates[p].begin() + streak_counts[p]);
-    std::sort(streak_merged.begin(), streak_merged.end(), [](const StreakPeak& a, const StreakPeak& b) {
-      if (a.score != b.score) return a.score > b.score;
-      return a.y != b.y ? a.y < b.y : a.x < b.x;
-    });
+    std::sort(streak_merged.begin(), streak_merged.end(), strongerStreak);
     for (const StreakPeak& p : streak_merged) {
       if (!streaks_unhidden && nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
       const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
-      Blob blob;
-      blob.grid = refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o);
-      blob.position = grid.toField(blob.grid);
-      blob.score = p.score;
-      blob.streak = true;
-      meanColor(blob.grid, blob.rgb);
+      const Blob blob = streakBlob(
+          refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o), p.score);
       if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
     }
+  }
+
+  // A fast-ball candidate at grid position g, its color from the frame.
+  Blob streakBlob(GridPx g, float score) const {
+    Blob blob;
+    blob.grid = g;
+    blob.position = grid.toField(g);
+    blob.score = score;
+    blob.streak = true;
+    meanColor(blob.grid, blob.rgb);
+    return blob;
   }
 
   // Every blob the league uses is strongly colored; a near-neutral mean

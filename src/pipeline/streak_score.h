@@ -53,6 +53,12 @@ struct StreakPeak {
   int x = 0, y = 0;
   float score = 0;
 };
+// The order candidates are taken in: strongest first, then by row and
+// column (a total order, so both searches take equal lists alike).
+inline bool strongerStreak(const StreakPeak& a, const StreakPeak& b) {
+  if (a.score != b.score) return a.score > b.score;
+  return a.y != b.y ? a.y < b.y : a.x < b.x;
+}
 int findStreakPeakRows(const float* score, const uint8_t* mask, const StreakWindows& w, StreakPeak* out,
                        int count, int capacity, int j_begin, int j_end);
 
