@@ -441,16 +441,12 @@ struct CpuPipeline::Impl {
     // Fast balls: the full pass's streak lattice peaks near the coarse
     // candidates, then taken as the full pass takes them: strongest first,
     // where no blob is.
-    const double at_blob2 = std::pow(kStreakCandidateAtBlobMm / grid.scale, 2);
     forParts(static_cast<int>(streak_centers.size()), [&](int p, int b, int e) {
       std::vector<FinePeak::Streak>& list = part_streaks[p];
       list.clear();
       for (int i = b; i < e; ++i) {
         const GridPx c = streak_centers[i];
-        bool at_blob = false;
-        for (const Blob& blob : out.blobs)
-          at_blob = at_blob || std::pow(blob.grid.x - c.x, 2) + std::pow(blob.grid.y - c.y, 2) < at_blob2;
-        if (at_blob) continue;
+        if (nearBlob(out.blobs, c, grid.scale, kStreakCandidateAtBlobMm)) continue;
         const size_t n = list.size();
         list.resize(n + kStreakPeaksPerSearch);
         list.resize(n + fine_peaks[p].streaks(raw, gain, c, list.data() + n, kStreakPeaksPerSearch));

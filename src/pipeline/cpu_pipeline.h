@@ -12,9 +12,10 @@
 //   -> minimum quadrant sum through a summed-area table (or exact circle)
 //   -> 4-way local peaks above the threshold, quadratic peak interpolation,
 //      mean blob color.
-// Where the grid is fine, the stages up to the peaks run first on the mosaic
-// binned to half size over a grid of twice the spacing, and the full grid is
-// scored only around the peaks found there (PipelineOptions::coarse_search).
+// Where the grid is fine, the stages up to the peaks run first over a grid of
+// twice the spacing (under 2x2 subsampling on the mosaic binned to half
+// size), and the full grid is scored only around the peaks found there
+// (PipelineOptions::coarse_search).
 // Tables and buffers are built once per camera; process() does not allocate
 // after the first frame.
 #include <memory>

@@ -280,8 +280,8 @@ GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p) {
   return {px * f + 0.5 * (f - 1), py * f + 0.5 * (f - 1)};
 }
 
-bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale) {
-  const double near2 = std::pow(kStreakBlobDistanceMm / grid_scale, 2);
+bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale, double distance_mm) {
+  const double near2 = std::pow(distance_mm / grid_scale, 2);
   for (const Blob& b : blobs) {
     const double dx = b.grid.x - g.x, dy = b.grid.y - g.y;
     if (dx * dx + dy * dy < near2) return true;

@@ -88,9 +88,10 @@ GridPx streakCentroid(const StreakFit& fit, const float* ca, const float* cb, in
 
 // Grid position of a lattice peak's cell center.
 GridPx streakPeakCenter(const StreakWindows& w, const StreakPeak& p);
-// Whether a blob of `blobs` lies within kStreakBlobDistanceMm of g: a peak
-// there is that blob (checked before the refinement, to spare it, and after).
-bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale);
+// Whether a blob of `blobs` lies within `distance_mm` of g: a peak there is
+// that blob (checked before the refinement, to spare it, and after).
+bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale,
+              double distance_mm = kStreakBlobDistanceMm);
 
 // Whether a streak blob (position and color set) joins `blobs`: not within
 // kStreakBlobDistanceMm of any blob there (an object the blob score found,
