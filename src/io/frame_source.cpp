@@ -180,7 +180,7 @@ bool ImageSequenceSource::next(Frame& f) {
         continue;
     }
     f.index = index;
-    f.t_capture = index / options_.fps;
+    f.t_capture = options_.time_origin + index / options_.fps;
     f.name = path;
     return true;
   }
@@ -232,7 +232,7 @@ bool VideoSource::next(Frame& f) {
   }
   const double ms = impl_->capture.get(cv::CAP_PROP_POS_MSEC);
   f.index = index_;
-  f.t_capture = (ms > 0 || index_ == 0) ? ms / 1000.0 : index_ / options_.fps;
+  f.t_capture = options_.time_origin + ((ms > 0 || index_ == 0) ? ms / 1000.0 : index_ / options_.fps);
   f.name = path_ + "#" + std::to_string(index_);
   ++index_;
   return true;

@@ -30,7 +30,13 @@ PixelFormat bayerFormatFromName(const std::string& text, const std::string& sour
 struct Frame {
   cv::Mat image;            // Bgr8 or one Bayer layout; video reuses the buffer
   PixelFormat format = PixelFormat::Bgr8;
-  double t_capture = 0;     // s: sequence time (index / fps) or container time
+  // s. Live cameras: Unix time at the end of the exposure (the camera's
+  // clock mapped to the host's, else the arrival time). Files and videos:
+  // FrameSourceOptions::time_origin + sequence time (index / fps or the
+  // container's time), so a run anchored at its start carries Unix time.
+  double t_capture = 0;
+  double t_capture_camera = -1;  // s on the camera's own clock; < 0: none
+  double t_arrival = 0;          // Unix s when the host received it (0: not live)
   uint32_t index = 0;       // position in the source, counting every input incl. skipped ones
   std::string name;         // file name or "video.mp4#17", for messages
 };
@@ -63,6 +69,7 @@ class FrameSource {
 
 struct FrameSourceOptions {
   double fps = 60;  // sequence timestamps: index / fps
+  double time_origin = 0;  // s added to every sequence time (run: Unix time at start)
   PixelFormat bayer = PixelFormat::BayerRggb8;  // meaning of single-channel images
   // For a directory written by `dotvision synth` (frame_<cam>_<NNNNN>.pgm/.png):
   // take only this camera's frames, one file per frame (the raw .pgm where
