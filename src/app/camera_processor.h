@@ -41,6 +41,9 @@ class CameraProcessor {
   // What makePipeline chose and why ("cpu", "opencl <device>", ...).
   const std::string& backendNote() const { return backend_note_; }
   const BlobList& blobs() const { return blobs_; }
+  const Detector& detector() const { return detector_; }
+  // From the next frame on; tracks stay. Throws InputError when invalid.
+  void setDetectorOptions(const DetectorOptions& o) { detector_.setOptions(o); }
   double lastPipelineMs() const { return pipeline_ms_; }
   double lastDetectionMs() const { return detection_ms_; }
 

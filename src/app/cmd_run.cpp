@@ -10,10 +10,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/camera_processor.h"
+#include "app/camera_runner.h"
 #include "app/commands.h"
+#include "app/packet_outputs.h"
+#include "app/run_progress.h"
+#include "app/signals.h"
+#include "camera/open_camera.h"
 #include "app/debug_views.h"
 #include "app/synthetic_source.h"
 #include "core/error.h"
@@ -61,101 +67,27 @@ struct RunArgs {
   long max_frames = -1;
   double geometry_timeout = 10;
   bool quiet = false;
+  bool realtime = false;
+  std::vector<std::string> camera_set;
+  std::optional<double> robot_height, robot_height_yellow, robot_height_blue;
+  double status_interval = 5;
 };
 
-// Where detections go: multicast (through the league-style publisher, which
-// also repeats the geometry every 3 s), SSL log, JSONL. The log starts with
-// a geometry packet too, so it is self-contained.
-class Outputs {
- public:
-  // publish_geometry: false when the geometry came from the network, where
-  // the geometry publisher already repeats it.
-  Outputs(const RunArgs& a, const ssl::SSL_GeometryData& geometry, bool publish_geometry = true) {
-    if (!a.no_publish) {
-      VisionPublisherOptions po;
-      po.group = a.multicast_group;
-      po.port = a.multicast_port;
-      po.interface_addr = a.multicast_interface;
-      try {
-        publisher_ = std::make_unique<VisionPublisher>(po);
-      } catch (const InputError& e) {
-        // Without an explicit interface a missing multicast route must not
-        // stop local work (recording, evaluation); with one it is an error.
-        if (!a.multicast_interface.empty()) throw;
-        std::fprintf(stderr, "dotvision run: warning: not publishing: %s\n", e.what());
-      }
-      if (publisher_ && publish_geometry) {
-        publisher_->setGeometry(geometry);
-        publisher_->publishGeometry(monotonicSeconds());
-      }
-    }
-    if (!a.record.empty()) {
-      log_ = std::make_unique<SslLogWriter>(a.record);
-      ssl::SSL_WrapperPacket g;
-      g.set_source(ssl::SSL_SOURCE_SSL_VISION);
-      *g.mutable_geometry() = geometry;
-      log_->write(nowNs(), LogMessageType::Vision2014, g.SerializeAsString());
-    }
-    if (!a.jsonl.empty()) {
-      jsonl_.open(a.jsonl, std::ios::trunc);
-      if (!jsonl_) throw InputError(a.jsonl, "cannot open for writing");
-      jsonl_path_ = a.jsonl;
-    }
-  }
+OutputOptions outputOptions(const RunArgs& a, bool publish_geometry) {
+  OutputOptions o;
+  o.publish = !a.no_publish;
+  o.group = a.multicast_group;
+  o.port = a.multicast_port;
+  o.interface_addr = a.multicast_interface;
+  o.publish_geometry = publish_geometry;
+  o.ssl_log = a.record;
+  o.jsonl = a.jsonl;
+  return o;
+}
 
-  void detection(const ssl::SSL_WrapperPacket& packet) {
-    if (publisher_) {
-      if (!publisher_->publishDetection(packet.detection())) ++send_failures_;
-      publisher_->publishGeometryIfDue(monotonicSeconds());
-    }
-    if (log_) {
-      packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
-      log_->write(nowNs(), LogMessageType::Vision2014, buffer_);
-    }
-    if (jsonl_.is_open()) {
-      jsonl_ << toCanonicalJson(packet) << '\n';
-      if (!jsonl_) throw InputError(jsonl_path_, "write failed");
-    }
-  }
-
-  void finish() {
-    if (log_) log_->close();
-    if (jsonl_.is_open()) {
-      jsonl_.close();
-      if (jsonl_.fail()) throw InputError(jsonl_path_, "write failed at close");
-    }
-  }
-
-  std::string describe(const RunArgs& a) const {
-    std::string out;
-    if (publisher_)
-      out += "published " + std::to_string(publisher_->sender().sentCount()) + " packets to " +
-             publisher_->sender().name() +
-             (send_failures_ ? " (" + std::to_string(send_failures_) + " detection frames failed)" : "");
-    else
-      out += "not published";
-    if (log_) out += "; recorded " + a.record;
-    if (!jsonl_path_.empty()) out += "; JSONL " + a.jsonl;
-    return out;
-  }
-
- private:
-  static int64_t nowNs() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::system_clock::now().time_since_epoch())
-        .count();
-  }
-  static double monotonicSeconds() {
-    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-  }
-
-  std::unique_ptr<VisionPublisher> publisher_;
-  std::unique_ptr<SslLogWriter> log_;
-  std::ofstream jsonl_;
-  std::string jsonl_path_;
-  std::string buffer_;
-  uint64_t send_failures_ = 0;
-};
+double unixNow() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
 
 // One camera: its processor (built on the first frame, whose size and pixel
 // format it then expects), reused detections and packet, and statistics.
@@ -174,7 +106,7 @@ struct RunState {
   const RunArgs& args;
   FieldModel field;
   ProcessorOptions options;
-  Outputs& outputs;
+  PacketOutputs& outputs;
   std::vector<SkipRecord> skipped;
   Metrics truth_metrics;
   bool have_truth = false;
@@ -191,6 +123,9 @@ ProcessorOptions processorOptions(const RunArgs& a) {
   o.pipeline.bayer_sampling = bayerSamplingFromName(a.bayer_sampling);
   o.pipeline.coarse_search = !a.full_search;
   o.detector.report_guessed_ids = !a.no_guessed_ids;
+  if (a.robot_height) o.detector.robot_height_yellow = o.detector.robot_height_blue = *a.robot_height;
+  if (a.robot_height_yellow) o.detector.robot_height_yellow = *a.robot_height_yellow;
+  if (a.robot_height_blue) o.detector.robot_height_blue = *a.robot_height_blue;
   return o;
 }
 
@@ -201,7 +136,6 @@ void reportSkip(RunState& s, const std::string& name, const std::string& reason)
 
 // Processes one frame of one camera; false if the frame was skipped.
 bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
-  const auto started = Clock::now();
   if (!ch.processor) {
     CameraCalibration c = ch.calibration;
     if (c.image_width == 0 || c.image_height == 0) {  // geometry without image size: take the frame's
@@ -232,7 +166,7 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
   stamp.camera_id = ch.calibration.camera_id;
   stamp.frame_number = frame.index;
   stamp.t_capture = frame.t_capture;
-  stamp.t_sent = frame.t_capture + std::chrono::duration<double>(Clock::now() - started).count();
+  stamp.t_sent = unixNow();
   fillDetectionPacket(ch.detections, stamp, ch.packet);
   s.outputs.detection(ch.packet);
 
@@ -290,7 +224,7 @@ void printSummary(const RunState& s, const std::string& what, const std::vector<
                 "false positives %.2f per frame\n",
                 m.ballRecall(), m.ballPrecision(), bpos.median, m.falsePositivesPerFrame());
   }
-  std::printf("  output: %s\n", s.outputs.describe(s.args).c_str());
+  std::printf("  output: %s\n", s.outputs.describe().c_str());
   if (!s.debug_written.empty())
     std::printf("  debug views: %zu images in %s\n", s.debug_written.size(), s.args.debug_dir.c_str());
   if (!s.skipped.empty()) {
@@ -336,6 +270,54 @@ Geometry sourceGeometry(const RunArgs& a, bool& from_network) {
   return *g;
 }
 
+// A camera, or files paced with --realtime: capture and processing threads
+// with the latest frame winning, a status line every few seconds, and a
+// summary with the latency from a frame's arrival to its packet.
+int runLive(const RunArgs& a, const CameraCalibration& calibration, const FieldModel& field,
+            std::unique_ptr<CameraSource> source, PacketOutputs& outputs) {
+  const std::string name = source->describe();
+  auto log = [](const std::string& line) {
+    std::fprintf(stderr, "dotvision run: %s\n", line.c_str());
+  };
+  CameraRunner runner(calibration, field, processorOptions(a), std::move(source), outputs, log);
+  const auto started = Clock::now();
+  runner.start();
+  auto next_status = started + std::chrono::duration<double>(a.status_interval);
+  CameraStatus last;
+  while (!stopRequested() && !runner.ended()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    outputs.tick();
+    if (Clock::now() >= next_status) {
+      last = runner.status();
+      if (!a.quiet && a.status_interval > 0) std::fprintf(stderr, "%s", statusLine(last).c_str());
+      next_status += std::chrono::duration<double>(a.status_interval);
+    }
+    if (a.max_frames >= 0 && runner.processed() >= static_cast<uint64_t>(a.max_frames)) break;
+  }
+  runner.stop();
+  outputs.finish();
+  last = runner.status();
+  const LiveCounters& c = last.counters;
+  const CameraRunner::Times t = runner.times();
+  const double secs = std::chrono::duration<double>(Clock::now() - started).count();
+  std::printf("dotvision run: %s, camera %u%s\n", name.c_str(), calibration.camera_id,
+              stopRequested() ? " (stopped by a signal)" : "");
+  std::printf("  frames: %llu received, %llu processed, %llu dropped (latest frame wins), %llu skipped, "
+              "%llu lost while the camera was away; %.1f s\n",
+              static_cast<unsigned long long>(c.frames_in), static_cast<unsigned long long>(c.processed),
+              static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.skipped),
+              static_cast<unsigned long long>(c.gap_frames), secs);
+  if (c.losses) std::printf("  camera lost %llu times, back %llu times\n", static_cast<unsigned long long>(c.losses),
+                            static_cast<unsigned long long>(c.reconnects));
+  if (!t.total_ms.empty())
+    std::printf("  latency arrival -> sent: p50 %.2f ms, p99 %.2f ms; pipeline median %.2f ms, detection median %.2f ms\n",
+                percentile(t.total_ms, 0.5), percentile(t.total_ms, 0.99), percentile(t.pipeline_ms, 0.5),
+                percentile(t.detection_ms, 0.5));
+  std::printf("  output: %s\n", outputs.describe().c_str());
+  if (!runner.failure().empty()) return kExitBadInput;
+  return c.processed > 0 ? kExitOk : kExitFailure;
+}
+
 int runOnSource(const RunArgs& a) {
   bool from_network = false;
   const Geometry geometry = sourceGeometry(a, from_network);
@@ -352,30 +334,49 @@ int runOnSource(const RunArgs& a) {
     throw InputError("command line", "--camera-id is needed: " + geometry_source +
                                          " has calibrations for cameras " + cameraIds(geometry));
   }
-  FrameSourceOptions so;
-  so.fps = a.fps;
-  so.bayer = bayerFormatFromName(a.bayer, "--bayer");
-  so.scene_camera = calibration->camera_id;
-  std::unique_ptr<FrameSource> source = openFrameSource(a.source, so);
+  CameraSourceOptions so;
+  so.files.fps = a.fps;
+  so.files.bayer = bayerFormatFromName(a.bayer, "--bayer");
+  so.files.scene_camera = calibration->camera_id;
+  so.files.time_origin = unixNow();  // packets carry Unix time, spaced as the files are
+  so.realtime = a.realtime;
+  for (const std::string& item : a.camera_set) so.settings.push_back(parseCameraSetting(item, "--camera-set"));
+  std::vector<std::string> settings_report;
+  std::unique_ptr<CameraSource> source = openCameraSource(a.source, so, &settings_report);
+  for (const std::string& line : settings_report)
+    std::printf("dotvision run: %s: %s\n", a.source.c_str(), line.c_str());
 
-  Outputs outputs(a, toProto(geometry), !from_network);
+  PacketOutputs outputs(outputOptions(a, !from_network), toProto(geometry));
+  installSignalHandlers();
+  if (source->live()) return runLive(a, *calibration, geometry.field, std::move(source), outputs);
+
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, false, {}};
   std::vector<Channel> channels(1);
   channels[0].calibration = *calibration;
 
   Frame frame;
-  size_t source_skips_seen = 0;
+  std::string why;
   long frames = 0;
-  while (a.max_frames < 0 || frames < a.max_frames) {
-    const bool more = source->next(frame);
-    for (; source_skips_seen < source->skipped().size(); ++source_skips_seen)
-      reportSkip(state, source->skipped()[source_skips_seen].name, source->skipped()[source_skips_seen].reason);
-    if (!more) break;
+  RunProgress progress(source->expectedCount(), !a.quiet);
+  while ((a.max_frames < 0 || frames < a.max_frames) && !stopRequested()) {
+    const GrabStatus st = source->grab(frame, 1.0, why);
+    if (st == GrabStatus::End) break;
+    if (st == GrabStatus::Skipped) {
+      const size_t colon = why.find(": ");
+      reportSkip(state, why.substr(0, colon), colon == std::string::npos ? why : why.substr(colon + 2));
+      progress.update(frames + static_cast<long>(state.skipped.size()));
+      continue;
+    }
+    if (st != GrabStatus::Frame) continue;
     ++frames;
     processFrame(state, channels[0], frame);
+    progress.update(frames + static_cast<long>(state.skipped.size()));
   }
+  progress.finish();
   outputs.finish();
-  printSummary(state, source->describe() + ", camera " + std::to_string(calibration->camera_id), channels);
+  printSummary(state, source->describe() + ", camera " + std::to_string(calibration->camera_id) +
+                          (stopRequested() ? " (stopped by a signal)" : ""),
+               channels);
   if (channels[0].processed == 0) {
     std::fprintf(stderr, "dotvision run: %s: no frame could be processed\n", a.source.c_str());
     return kExitBadInput;
@@ -402,7 +403,9 @@ int runSynthetic(const RunArgs& a) {
   SyntheticSource source(spec, camera_indices);
   const Geometry geometry = source.renderer().geometry();
 
-  Outputs outputs(a, toProto(geometry));
+  PacketOutputs outputs(outputOptions(a, true), toProto(geometry));
+  installSignalHandlers();
+  const double origin = unixNow();  // packets carry Unix time
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, true, {}};
   // Channel k serves scene camera camera_indices[k].
   std::vector<Channel> channels(camera_indices.size());
@@ -414,7 +417,8 @@ int runSynthetic(const RunArgs& a) {
 
   const MatchOptions match;
   Frame frame;
-  while (source.next(frame)) {
+  while (!stopRequested() && source.next(frame)) {
+    frame.t_capture += origin;
     Channel& ch = channels[channel_of[source.cameraIndex()]];
     const bool ok = processFrame(state, ch, frame);
     scoreFrame(source.truth(), ok ? &ch.packet.detection() : nullptr, match, state.truth_metrics);
@@ -439,7 +443,8 @@ CommandFn addRunCommand(CLI::App& root) {
       "Detect robots and balls in a camera's frames and publish them as SSL_DetectionFrame. "
       "Without --source it runs on the built-in synthetic scene and compares with its truth.");
   cmd->add_option("--source", a->source,
-                  "image file, directory of images (sorted by name; in a `dotvision synth` directory only "
+                  "genicam://ID (Aravis id or serial; genicam:// for the only camera), v4l2:///dev/videoN, "
+                  "rtsp://..., http://... (MJPEG), image file, directory of images (sorted by name; in a `dotvision synth` directory only "
                   "the chosen camera's frames), quoted glob ('dir/*.png') or video file. Color images are "
                   "RGB; 8-bit single-channel images are Bayer mosaics");
   cmd->add_option("--geometry", a->geometry,
@@ -482,6 +487,21 @@ CommandFn addRunCommand(CLI::App& root) {
   cmd->add_option("--opencl-platform", a->opencl_platform, "OpenCL platform: index or name substring");
   cmd->add_option("--opencl-device", a->opencl_device, "OpenCL device: index or name substring");
   cmd->add_option("--max-frames", a->max_frames, "stop after this many frames")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--robot-height", a->robot_height, "robot height of both teams in mm (default 140)")
+      ->check(CLI::Range(50.0, 300.0));
+  cmd->add_option("--robot-height-yellow", a->robot_height_yellow, "robot height of the yellow team in mm")
+      ->check(CLI::Range(50.0, 300.0));
+  cmd->add_option("--robot-height-blue", a->robot_height_blue, "robot height of the blue team in mm")
+      ->check(CLI::Range(50.0, 300.0));
+  cmd->add_flag("--realtime", a->realtime,
+                "files and videos: deliver frames at their own rate, as a camera would (latest frame wins)");
+  cmd->add_option("--camera-set", a->camera_set,
+                  "camera setting Name=Value by GenICam feature name (repeatable, applied in order), "
+                  "e.g. ExposureTime=4000 Gain=0");
+  cmd->add_option("--status-interval", a->status_interval,
+                  "seconds between status lines of a live run (default 5; 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet", a->quiet, "no progress or status lines on the terminal");
 
   return [a] {
     // Validate the Bayer name up front so a typo fails before any work.

@@ -183,13 +183,9 @@ struct Detector::Impl {
 
   Impl(const CameraModel& cam, const FieldModel& f, const DetectorOptions& o)
       : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
-    ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
     ball_area = field.withBoundary();
     stretched_view = seesStretchedField();
-    const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
-                                         &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
-                                         &opt.ref_white};
-    for (int k = 0; k < kNumClasses; ++k) classes[k].reference = feature(*refs[k]);
+    setOptions(o);
     blobs.reserve(4096);
     hyps.reserve(1024);
     robots.reserve(64);
@@ -203,6 +199,16 @@ struct Detector::Impl {
     sample_owner.reserve(512);
     score_buf.reserve(512);
     reset();
+  }
+
+  // Takes new options between frames; tracks and learned colors stay.
+  void setOptions(const DetectorOptions& o) {
+    opt = o;
+    ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
+    const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
+                                         &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
+                                         &opt.ref_white};
+    for (int k = 0; k < kNumClasses; ++k) classes[k].reference = feature(*refs[k]);
   }
 
   void reset() {
@@ -1383,6 +1389,18 @@ Detector::Detector(Detector&&) noexcept = default;
 Detector& Detector::operator=(Detector&&) noexcept = default;
 
 void Detector::reset() { impl_->reset(); }
+
+Detector::ColorSeparations Detector::colorSeparations() const {
+  const auto& c = impl_->classes;
+  return {colorDistance(c[kYellow].color, c[kBlue].color), colorDistance(c[kGreen].color, c[kPink].color),
+          colorDistance(c[kOrange].color, c[kField].color)};
+}
+
+void Detector::setOptions(const DetectorOptions& opt) {
+  validateDetectorOptions(opt, impl_->camera);
+  opt_ = opt;
+  impl_->setOptions(opt);
+}
 
 void Detector::process(const BlobList& blobs, double t_capture, Detections& out, const FrameView& frame) {
   impl_->process(blobs, t_capture, out, frame);

@@ -166,6 +166,10 @@ class Detector {
 
   // Forget all history (a new, unrelated frame or sequence).
   void reset();
+  // New options (robot heights from the game controller, a reloaded config)
+  // from the next frame on; tracks and learned colors are kept. Validates
+  // first and throws InputError, keeping the old options, when invalid.
+  void setOptions(const DetectorOptions& opt);
   // blobs: one frame's blobs on the plane blobs.plane_height; t_capture in
   // seconds. No allocation after warm-up (buffers are kept and reserved).
   // `frame`: the image the blobs came from, for the colors of side slots
@@ -174,6 +178,14 @@ class Detector {
                const FrameView& frame = {});
 
   const DetectorOptions& options() const { return opt_; }
+
+  // Distances between the learned class colors (chromaticity, 0..300 scale
+  // of color_classes.h) of the pairs the detector must tell apart; for the
+  // health record (a pair that collapses is a class the camera lost).
+  struct ColorSeparations {
+    double yellow_blue = 0, green_pink = 0, orange_field = 0;
+  };
+  ColorSeparations colorSeparations() const;
 
  private:
   struct Impl;

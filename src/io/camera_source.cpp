@@ -62,7 +62,13 @@ GrabStatus FileCameraSource::grab(Frame& f, double timeout_s, std::string& why) 
       first_t_ = pending_.t_capture;
       start_wall_ = steadySeconds();
     }
-    const double due = start_wall_ + (pending_.t_capture - first_t_);
+    double due = start_wall_ + (pending_.t_capture - first_t_);
+    // Far behind (the first frame built the processor, or the machine
+    // stalled): resume at the files' pace instead of bursting to catch up.
+    if (steadySeconds() - due > 0.25) {
+      start_wall_ += steadySeconds() - due;
+      due = steadySeconds();
+    }
     const double deadline = steadySeconds() + timeout_s;
     while (steadySeconds() < due) {
       if (interrupted_.exchange(false)) return GrabStatus::Timeout;

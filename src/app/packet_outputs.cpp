@@ -1,0 +1,108 @@
+#include "app/packet_outputs.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "core/error.h"
+#include "geometry/proto_json.h"
+
+namespace dv::app {
+
+namespace {
+int64_t unixNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+double monotonicSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+PacketOutputs::PacketOutputs(const OutputOptions& o, const ssl::SSL_GeometryData& geometry) : o_(o) {
+  if (o.publish) {
+    VisionPublisherOptions po;
+    po.group = o.group;
+    po.port = o.port;
+    po.interface_addr = o.interface_addr;
+    try {
+      publisher_ = std::make_unique<VisionPublisher>(po);
+    } catch (const InputError& e) {
+      if (!o.interface_addr.empty()) throw;
+      std::fprintf(stderr, "%s: warning: not publishing: %s\n", o.who.c_str(), e.what());
+    }
+    if (publisher_ && o.publish_geometry) {
+      publisher_->setGeometry(geometry);
+      publisher_->publishGeometry(monotonicSeconds());
+    }
+  }
+  if (!o.ssl_log.empty()) {
+    log_ = std::make_unique<SslLogWriter>(o.ssl_log);
+    ssl::SSL_WrapperPacket g;
+    g.set_source(ssl::SSL_SOURCE_SSL_VISION);
+    *g.mutable_geometry() = geometry;
+    log_->write(unixNs(), LogMessageType::Vision2014, g.SerializeAsString());
+  }
+  if (!o.jsonl.empty()) {
+    jsonl_.open(o.jsonl, std::ios::trunc);
+    if (!jsonl_) throw InputError(o.jsonl, "cannot open for writing");
+  }
+}
+
+void PacketOutputs::detection(const ssl::SSL_WrapperPacket& packet) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (finished_) return;
+  if (publisher_) {
+    if (!publisher_->publishDetection(packet.detection())) ++send_failures_;
+    publisher_->publishGeometryIfDue(monotonicSeconds());
+  }
+  if (log_) {
+    packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
+    log_->write(unixNs(), LogMessageType::Vision2014, buffer_);
+  }
+  if (jsonl_.is_open()) {
+    jsonl_ << toCanonicalJson(packet) << '\n';
+    ++jsonl_lines_;
+    if (!jsonl_) throw InputError(o_.jsonl, "write failed");
+  }
+}
+
+void PacketOutputs::tick() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (publisher_ && !finished_) publisher_->publishGeometryIfDue(monotonicSeconds());
+}
+
+void PacketOutputs::setGeometry(const ssl::SSL_GeometryData& geometry) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (publisher_ && o_.publish_geometry) {
+    publisher_->setGeometry(geometry);
+    publisher_->publishGeometry(monotonicSeconds());
+  }
+}
+
+void PacketOutputs::finish() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (finished_) return;
+  finished_ = true;
+  if (log_) log_->close();
+  if (jsonl_.is_open()) {
+    jsonl_.close();
+    if (jsonl_.fail()) throw InputError(o_.jsonl, "write failed at close");
+  }
+}
+
+std::string PacketOutputs::describe() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::string out;
+  if (publisher_)
+    out += "published " + std::to_string(publisher_->sender().sentCount()) + " packets to " +
+           publisher_->sender().name() +
+           (send_failures_ ? " (" + std::to_string(send_failures_) + " detection frames failed)" : "");
+  else
+    out += "not published";
+  if (log_) out += "; recorded " + o_.ssl_log;
+  if (!o_.jsonl.empty()) out += "; JSONL " + o_.jsonl;
+  return out;
+}
+
+}  // namespace dv::app

@@ -1,0 +1,59 @@
+#pragma once
+// Where detections go: multicast (through the league-style publisher, which
+// also repeats the geometry every 3 s), an SSL log file, JSONL. Shared by
+// every camera of a process: detection() may be called from several camera
+// threads at once (one lock around the sends; a send is microseconds).
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "dotvision/ssl_geometry.pb.h"
+#include "dotvision/ssl_wrapper.pb.h"
+#include "io/ssl_log.h"
+#include "net/vision_publisher.h"
+
+namespace dv::app {
+
+struct OutputOptions {
+  bool publish = true;
+  std::string group = "224.5.23.2";
+  uint16_t port = 10006;
+  std::string interface_addr;  // "" by route
+  bool publish_geometry = true;  // false when the geometry publisher repeats it already
+  std::string ssl_log;           // "" none
+  std::string jsonl;             // "" none
+  std::string who = "dotvision run";  // prefix of warnings
+};
+
+class PacketOutputs {
+ public:
+  // Throws InputError when a file cannot be opened or an explicit interface
+  // cannot be used (without one, a missing route only warns: local work
+  // such as recording must not stop).
+  PacketOutputs(const OutputOptions& o, const ssl::SSL_GeometryData& geometry);
+
+  void detection(const ssl::SSL_WrapperPacket& packet);
+  // Repeats the geometry when due; called by detection() and by the owner's
+  // idle loop, so geometry keeps going out while every camera is lost.
+  void tick();
+  // Replaces the geometry published from now on (a new calibration).
+  void setGeometry(const ssl::SSL_GeometryData& geometry);
+  // Closes the files so they are complete (SSL log records whole). Safe twice.
+  void finish();
+  std::string describe() const;
+  uint64_t sendFailures() const { return send_failures_; }
+
+ private:
+  OutputOptions o_;
+  mutable std::mutex mutex_;
+  std::unique_ptr<VisionPublisher> publisher_;
+  std::unique_ptr<SslLogWriter> log_;
+  std::ofstream jsonl_;
+  std::string buffer_;
+  uint64_t send_failures_ = 0;
+  uint64_t jsonl_lines_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace dv::app
