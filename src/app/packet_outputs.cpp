@@ -19,7 +19,8 @@ double monotonicSeconds() {
 }
 }  // namespace
 
-PacketOutputs::PacketOutputs(const OutputOptions& o, const ssl::SSL_GeometryData& geometry) : o_(o) {
+PacketOutputs::PacketOutputs(const OutputOptions& o, const ssl::SSL_GeometryData& geometry)
+    : o_(o), geometry_(geometry) {
   if (o.publish) {
     VisionPublisherOptions po;
     po.group = o.group;
@@ -72,8 +73,26 @@ void PacketOutputs::tick() {
   if (publisher_ && !finished_) publisher_->publishGeometryIfDue(monotonicSeconds());
 }
 
+void PacketOutputs::retarget(const OutputOptions& o) {
+  VisionPublisherOptions po;
+  po.group = o.group;
+  po.port = o.port;
+  po.interface_addr = o.interface_addr;
+  auto next = std::make_unique<VisionPublisher>(po);  // throws before anything changes
+  if (o_.publish_geometry) {
+    next->setGeometry(geometry_);
+    next->publishGeometry(monotonicSeconds());
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  publisher_ = std::move(next);
+  o_.group = o.group;
+  o_.port = o.port;
+  o_.interface_addr = o.interface_addr;
+}
+
 void PacketOutputs::setGeometry(const ssl::SSL_GeometryData& geometry) {
   std::lock_guard<std::mutex> lock(mutex_);
+  geometry_ = geometry;
   if (publisher_ && o_.publish_geometry) {
     publisher_->setGeometry(geometry);
     publisher_->publishGeometry(monotonicSeconds());

@@ -39,6 +39,11 @@ class PacketOutputs {
   void tick();
   // Replaces the geometry published from now on (a new calibration).
   void setGeometry(const ssl::SSL_GeometryData& geometry);
+  // Publishes to another group, port or interface from now on (a reloaded
+  // config); the files stay. Throws InputError, keeping the old target,
+  // when the new one cannot be set up.
+  void retarget(const OutputOptions& o);
+  bool publishesGeometry() const { return o_.publish_geometry; }
   // Closes the files so they are complete (SSL log records whole). Safe twice.
   void finish();
   std::string describe() const;
@@ -54,6 +59,7 @@ class PacketOutputs {
   uint64_t send_failures_ = 0;
   uint64_t jsonl_lines_ = 0;
   bool finished_ = false;
+  ssl::SSL_GeometryData geometry_;  // what a new publisher starts with
 };
 
 }  // namespace dv::app

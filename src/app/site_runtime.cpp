@@ -1,0 +1,246 @@
+#include "app/site_runtime.h"
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "app/synthetic_camera.h"
+#include "camera/open_camera.h"
+#include "core/error.h"
+#include "net/geometry_publisher.h"
+
+namespace dv::app {
+
+namespace {
+double unixNow() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
+
+std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<std::string>& report) {
+  if (isSyntheticSpec(cam.source)) return std::make_unique<SyntheticCamera>(cam.source);
+  CameraSourceOptions so;
+  so.files.fps = cam.fps;
+  so.files.bayer = bayerFormatFromName(cam.bayer, "camera " + std::to_string(cam.id) + " bayer");
+  so.files.scene_camera = cam.id;
+  so.files.time_origin = unixNow();
+  so.realtime = cam.realtime;
+  so.settings = cam.settings;
+  return openCameraSource(cam.source, so, &report);
+}
+
+OutputOptions outputOptionsFor(const SiteConfig& c, bool publish_geometry) {
+  OutputOptions o;
+  o.group = c.network.vision_group;
+  o.port = c.network.vision_port;
+  o.interface_addr = c.network.interface_addr;
+  o.publish_geometry = publish_geometry;
+  o.ssl_log = c.record.ssl_log;
+  o.who = "dotvision serve";
+  return o;
+}
+}  // namespace
+
+void robotHeightsFor(const SiteRobotHeights& h, const TeamNames& teams, double& yellow, double& blue,
+                     std::vector<std::string>* unknown) {
+  auto lookup = [&](const std::string& name) {
+    if (name.empty()) return h.default_mm;
+    auto it = h.teams.find(lower(name));
+    if (it != h.teams.end()) return it->second;
+    if (unknown) unknown->push_back(name);
+    return h.default_mm;
+  };
+  yellow = h.yellow_mm ? *h.yellow_mm : lookup(teams.yellow);
+  blue = h.blue_mm ? *h.blue_mm : lookup(teams.blue);
+}
+
+SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config), log_(std::move(log)) {
+  // Sources first: a synthetic camera brings its scene's geometry.
+  std::vector<std::unique_ptr<CameraSource>> sources(config_.cameras.size());
+  std::vector<const Geometry*> scene_geometry(config_.cameras.size(), nullptr);
+  for (size_t i = 0; i < config_.cameras.size(); ++i) {
+    const SiteCamera& cam = config_.cameras[i];
+    try {
+      std::vector<std::string> report;
+      sources[i] = openSiteSource(cam, report);
+      for (const std::string& line : report) log_(cameraName(cam) + ": " + line);
+      if (auto* synthetic = dynamic_cast<SyntheticCamera*>(sources[i].get())) scene_geometry[i] = &synthetic->geometry();
+    } catch (const std::exception& e) {
+      log_(cameraName(cam) + " (" + config_.path + ":" + std::to_string(cam.line) + "): not started: " + e.what());
+    }
+  }
+  const SiteNetwork& net = config_.network;
+  bool publish_geometry = true;
+  if (net.geometry == "file" || net.geometry == "publish") {
+    geometry_ = loadGeometry(net.geometry_file);
+    publish_geometry = net.geometry == "file";
+  } else if (net.geometry == "publisher" ||
+             std::none_of(scene_geometry.begin(), scene_geometry.end(), [](const Geometry* g) { return g; })) {
+    // Wait for the geometry publisher: the field and each camera's calibration.
+    publish_geometry = false;
+    GeometryReceiveOptions ro;
+    ro.group = net.vision_group;
+    ro.port = net.vision_port;
+    ro.interface_addr = net.interface_addr;
+    for (const SiteCamera& cam : config_.cameras) {
+      auto g = receiveGeometry(cam.id, net.geometry_timeout, ro);
+      if (!g) {
+        log_(cameraName(cam) + ": no calibration from the geometry publisher within " +
+             std::to_string(net.geometry_timeout) + " s");
+        continue;
+      }
+      geometry_.field = g->field;
+      if (const CameraCalibration* c = g->camera(cam.id)) geometry_.cameras.push_back(*c);
+    }
+  } else {  // auto with synthetic cameras: their scenes' field and calibrations
+    for (size_t i = 0; i < scene_geometry.size(); ++i) {
+      if (!scene_geometry[i]) continue;
+      geometry_.field = scene_geometry[i]->field;
+      if (const CameraCalibration* c = scene_geometry[i]->camera(config_.cameras[i].id))
+        geometry_.cameras.push_back(*c);
+    }
+  }
+  if (net.geometry == "publish") {
+    GeometryPublisherOptions po;
+    po.group = net.vision_group;
+    po.port = net.vision_port;
+    po.interface_addr = net.interface_addr;
+    geometry_publisher_ = std::make_unique<GeometryPublisher>(geometry_, po);
+  }
+  outputs_ = std::make_unique<PacketOutputs>(outputOptionsFor(config_, publish_geometry), toProto(geometry_));
+
+  for (size_t i = 0; i < config_.cameras.size(); ++i) {
+    if (!sources[i]) continue;
+    const SiteCamera& cam = config_.cameras[i];
+    const CameraCalibration* calib = geometry_.camera(cam.id);
+    if (!calib) {
+      log_(cameraName(cam) + ": not started: the geometry has no calibration for it");
+      continue;
+    }
+    runners_.push_back(std::make_unique<CameraRunner>(*calib, geometry_.field, processorOptions(cam),
+                                                      std::move(sources[i]), *outputs_, log_));
+    config_index_.push_back(i);
+  }
+  if (runners_.empty()) throw InputError(config_.path, "no camera could be started (see the lines above)");
+}
+
+SiteRuntime::~SiteRuntime() { stop(); }
+
+DetectorOptions SiteRuntime::detectorOptions() const {
+  DetectorOptions d;
+  d.report_guessed_ids = config_.detector.guessed_ids;
+  d.tracking = config_.detector.tracking;
+  d.ball_radius = config_.detector.ball_radius;
+  robotHeightsFor(config_.robot_heights, teams_, d.robot_height_yellow, d.robot_height_blue);
+  return d;
+}
+
+ProcessorOptions SiteRuntime::processorOptions(const SiteCamera& cam) const {
+  ProcessorOptions o;
+  // Each camera's pipeline gets an even share of the cores unless told.
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.pipeline.threads = cam.threads > 0 ? cam.threads
+                                       : std::max(1, cores / static_cast<int>(std::max<size_t>(1, config_.cameras.size())));
+  if (!parseBackend(cam.backend.c_str(), o.backend.backend))
+    throw InputError(config_.path + ":" + std::to_string(cam.line), "unknown backend '" + cam.backend + "'");
+  o.pipeline.bayer_sampling = bayerSamplingFromName(cam.bayer_sampling);
+  o.pipeline.coarse_search = !cam.full_search;
+  o.detector = detectorOptions();
+  return o;
+}
+
+void SiteRuntime::start() {
+  if (geometry_publisher_) {
+    geometry_publisher_->start();
+    geometry_thread_ = std::thread([this] {
+      while (geometry_publisher_->step(0.1)) {
+      }
+    });
+  }
+  for (auto& r : runners_) r->start();
+}
+
+void SiteRuntime::stop() {
+  for (auto& r : runners_) r->stop();
+  if (geometry_publisher_) geometry_publisher_->stop();
+  if (geometry_thread_.joinable()) geometry_thread_.join();
+}
+
+std::vector<CameraStatus> SiteRuntime::status() {
+  std::vector<CameraStatus> out;
+  out.reserve(runners_.size());
+  for (auto& r : runners_) out.push_back(r->status());
+  return out;
+}
+
+void SiteRuntime::setTeams(const TeamNames& teams) {
+  teams_ = teams;
+  std::vector<std::string> unknown;
+  double y = 0, b = 0;
+  robotHeightsFor(config_.robot_heights, teams_, y, b, &unknown);
+  for (const std::string& name : unknown)
+    log_("team '" + name + "' is not in the robot-height table of " + config_.path + ": using the default " +
+         std::to_string(static_cast<int>(config_.robot_heights.default_mm)) + " mm");
+  const DetectorOptions d = detectorOptions();
+  for (auto& r : runners_) r->setDetectorOptions(d);
+}
+
+std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
+  std::vector<std::string> notes;
+  // Cameras are matched by id; a changed source or a new or removed camera needs a restart.
+  for (const SiteCamera& n : next.cameras) {
+    auto old = std::find_if(config_.cameras.begin(), config_.cameras.end(), [&](const SiteCamera& c) { return c.id == n.id; });
+    if (old == config_.cameras.end()) notes.push_back("camera " + std::to_string(n.id) + " is new: restart serve to start it");
+    else if (old->source != n.source) notes.push_back("camera " + std::to_string(n.id) + " has a new source: restart serve to use it");
+  }
+  for (const SiteCamera& c : config_.cameras)
+    if (std::none_of(next.cameras.begin(), next.cameras.end(), [&](const SiteCamera& n) { return n.id == c.id; }))
+      notes.push_back("camera " + std::to_string(c.id) + " is no longer listed: restart serve to stop it");
+
+  const SiteConfig previous = config_;
+  config_.robot_heights = next.robot_heights;
+  config_.detector = next.detector;
+  config_.status_interval = next.status_interval;
+  const DetectorOptions d = detectorOptions();
+  for (size_t i = 0; i < runners_.size(); ++i) {
+    runners_[i]->setDetectorOptions(d);
+    SiteCamera& cur = config_.cameras[config_index_[i]];
+    auto n = std::find_if(next.cameras.begin(), next.cameras.end(), [&](const SiteCamera& c) { return c.id == cur.id; });
+    if (n == next.cameras.end() || n->source != cur.source) continue;
+    bool same = n->settings.size() == cur.settings.size();
+    for (size_t k = 0; same && k < cur.settings.size(); ++k)
+      same = n->settings[k].name == cur.settings[k].name && n->settings[k].value == cur.settings[k].value;
+    if (same) continue;
+    try {
+      for (const std::string& line : runners_[i]->source().applySettings(n->settings))
+        notes.push_back("camera " + std::to_string(cur.id) + ": " + line);
+      cur.settings = n->settings;
+    } catch (const std::exception& e) {
+      notes.push_back("camera " + std::to_string(cur.id) + ": settings not applied: " + e.what());
+    }
+  }
+  if (next.network.vision_group != previous.network.vision_group ||
+      next.network.vision_port != previous.network.vision_port ||
+      next.network.interface_addr != previous.network.interface_addr) {
+    config_.network.vision_group = next.network.vision_group;
+    config_.network.vision_port = next.network.vision_port;
+    config_.network.interface_addr = next.network.interface_addr;
+    try {
+      outputs_->retarget(outputOptionsFor(config_, outputs_->publishesGeometry()));
+      notes.push_back("publishing to " + config_.network.vision_group + ":" + std::to_string(config_.network.vision_port));
+    } catch (const std::exception& e) {
+      notes.push_back(std::string("network target not changed: ") + e.what());
+    }
+  }
+  double y = 0, b = 0;
+  robotHeightsFor(config_.robot_heights, teams_, y, b);
+  notes.push_back("detector options and robot heights applied (yellow " + std::to_string(static_cast<int>(y)) +
+                  " mm, blue " + std::to_string(static_cast<int>(b)) + " mm)");
+  return notes;
+}
+
+}  // namespace dv::app

@@ -1,0 +1,75 @@
+#pragma once
+// What `serve` runs for a site config: a CameraRunner per camera (a camera
+// whose source or processor fails is reported and left out; the others
+// run), the shared outputs, the geometry (from the cameras' scenes, a file,
+// the in-process geometry publisher or the network), and the robot heights
+// from the config's team table and the game controller's team names.
+// reload() takes a new, validated config: detector options, robot heights,
+// camera settings and network targets change in place, tracks stay;
+// changes that need a restart (cameras added, removed or moved to another
+// source) are named and not applied.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/camera_runner.h"
+#include "app/packet_outputs.h"
+#include "app/site_config.h"
+#include "geometry/geometry_io.h"
+#include "live/camera_status.h"
+
+namespace dv {
+class GeometryPublisher;
+}
+
+namespace dv::app {
+
+struct TeamNames {
+  std::string yellow, blue;  // from the referee; "" unknown
+};
+
+// Robot heights (mm) for the config and the teams playing: fixed per-color
+// heights first, else the team table (case-insensitive), else the default.
+// `unknown` receives the team names not in the table.
+void robotHeightsFor(const SiteRobotHeights& h, const TeamNames& teams, double& yellow, double& blue,
+                     std::vector<std::string>* unknown = nullptr);
+
+class SiteRuntime {
+ public:
+  using LogFn = std::function<void(const std::string&)>;
+  // Throws InputError when no camera can run or the geometry cannot be had.
+  SiteRuntime(const SiteConfig& config, LogFn log);
+  ~SiteRuntime();
+
+  void start();
+  void stop();
+  // Once a second from the main loop: status records (health changes are logged).
+  std::vector<CameraStatus> status();
+  // A validated new config; returns what was applied and what was not.
+  std::vector<std::string> reload(const SiteConfig& next);
+  // The game controller's team names changed: new heights from the next frame.
+  void setTeams(const TeamNames& teams);
+  void tick() { outputs_->tick(); }
+  const SiteConfig& config() const { return config_; }
+  const Geometry& geometry() const { return geometry_; }
+  size_t cameraCount() const { return runners_.size(); }
+  CameraRunner& runner(size_t i) { return *runners_[i]; }
+  std::string outputsSummary() const { return outputs_->describe(); }
+  void finish() { outputs_->finish(); }
+
+ private:
+  DetectorOptions detectorOptions() const;
+  ProcessorOptions processorOptions(const SiteCamera& cam) const;
+
+  SiteConfig config_;
+  LogFn log_;
+  Geometry geometry_;
+  TeamNames teams_;
+  std::unique_ptr<PacketOutputs> outputs_;
+  std::unique_ptr<GeometryPublisher> geometry_publisher_;
+  std::thread geometry_thread_;
+  std::vector<std::unique_ptr<CameraRunner>> runners_;
+  std::vector<size_t> config_index_;  // runner i serves config_.cameras[config_index_[i]]
+};
+
+}  // namespace dv::app
