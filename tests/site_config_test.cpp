@@ -208,6 +208,8 @@ TEST(SiteConfigParse, TeamNamesIgnoreCase) {
   EXPECT_NE(what.find("ignoring case"), std::string::npos) << what;
   expectError(kOneCamera + "robot_heights:\n  teams: {\"\": 140}\n", 4, "robot_heights.teams[\"\"]", "empty");
   expectError(kOneCamera + "robot_heights:\n  teams: [ER-Force]\n", 4, "robot_heights.teams", "expected a map");
+  expectError(kOneCamera + "robot_heights:\n  teams:\n    ER-Force:\n", 5, "robot_heights.teams[\"ER-Force\"]",
+              "no height");
 }
 
 TEST(SiteConfigErrors, UnknownKeysListTheAllowedOnesAndSuggest) {

@@ -196,6 +196,7 @@ class SiteReader {
                 "the same team as '" + it->second.first + "' (line " + std::to_string(it->second.second) +
                     "): team names are matched ignoring case");
       seen[team] = {name, line};
+      if (kv.second.IsNull()) y_.fail(kv.first, key, "no height: write the team's robot height in mm");
       out[team] = height(kv.second, key);
     }
   }
