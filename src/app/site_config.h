@@ -48,7 +48,7 @@ struct SiteNetwork {
 struct SiteRobotHeights {
   double default_mm = 140;                 // a team not in the table
   std::optional<double> yellow_mm, blue_mm;  // fixed per color, overriding the team table
-  std::map<std::string, double> teams;     // team name (lower case) -> mm
+  std::map<std::string, double> teams;     // teamKey(team name) (lower case) -> mm
 };
 
 struct SiteDetector {
@@ -80,5 +80,16 @@ struct SiteConfig {
 SiteConfig loadSiteConfig(const std::string& path);
 // The same from text (for tests and the console's edits); `name` is used in messages.
 SiteConfig parseSiteConfig(const std::string& yaml_text, const std::string& name);
+
+// A few lines for serve's start-up print and `serve --check`: the cameras
+// (id, source, options that differ from the defaults), network, geometry,
+// referee, robot heights, recording. Each line ends with '\n'.
+std::string describeSiteConfig(const SiteConfig& config);
+
+// How team names are compared (the table's keys, the referee's names):
+// lower case, surrounding blanks dropped.
+std::string teamKey(const std::string& name);
+// The team table's height for `team_name` (matched by teamKey), if listed.
+std::optional<double> teamHeight(const SiteRobotHeights& heights, const std::string& team_name);
 
 }  // namespace dv::app
