@@ -15,10 +15,6 @@ namespace {
 double unixNow() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
 
 std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<std::string>& report) {
@@ -49,8 +45,7 @@ void robotHeightsFor(const SiteRobotHeights& h, const TeamNames& teams, double& 
                      std::vector<std::string>* unknown) {
   auto lookup = [&](const std::string& name) {
     if (name.empty()) return h.default_mm;
-    auto it = h.teams.find(lower(name));
-    if (it != h.teams.end()) return it->second;
+    if (const std::optional<double> mm = teamHeight(h, name)) return *mm;
     if (unknown) unknown->push_back(name);
     return h.default_mm;
   };
