@@ -13,7 +13,7 @@ packages=(
   libnanoflann-dev libcpp-httplib-dev zlib1g-dev
   ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
   libgtest-dev libgmock-dev libbenchmark-dev
-  libaravis-dev libusb-1.0-0-dev aravis-tools ffmpeg
+  libaravis-dev libusb-1.0-0-dev aravis-tools ffmpeg  # aravis-0.8.pc requires libusb-1.0.pc
 )
 
 missing=()

@@ -4,14 +4,19 @@
 # the product. Where a clone has no ../shared, a stand-in test reports the
 # skip through GTest so ctest lists it.
 set(DV_REFERENCE_PROTO_DIR "${PROJECT_SOURCE_DIR}/../shared/reference/proto")
-# Only the vision schemas: the tracked and game-controller files define
-# clashing global messages (Vector2, ...) and are not ours to conform to.
+# The vision schemas and the referee message with its import closure. The
+# tracked vision files are left out: they and the game-controller files
+# define the same global messages (Vector2, ...), and we have no copy of them.
 set(DV_REFERENCE_PROTO_NAMES
   messages_robocup_ssl_detection
   messages_robocup_ssl_geometry
   messages_robocup_ssl_wrapper
   messages_robocup_ssl_geometry_legacy
-  messages_robocup_ssl_wrapper_legacy)
+  messages_robocup_ssl_wrapper_legacy
+  state/ssl_gc_referee_message
+  state/ssl_gc_game_event
+  state/ssl_gc_common
+  geom/ssl_gc_geometry)
 
 set(DV_REFERENCE_PROTO_FOUND TRUE)
 foreach(name ${DV_REFERENCE_PROTO_NAMES})
@@ -36,6 +41,7 @@ if(DV_REFERENCE_PROTO_FOUND)
   set_source_files_properties(${DV_REFERENCE_PROTO_SRCS} PROPERTIES COMPILE_OPTIONS "-w")
   add_executable(dotvision_conformance_tests
     ${CMAKE_CURRENT_LIST_DIR}/wire_conformance_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/referee_conformance_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/proto_reflection.cpp
     ${DV_REFERENCE_PROTO_SRCS})
   target_include_directories(dotvision_conformance_tests PRIVATE

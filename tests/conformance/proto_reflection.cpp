@@ -1,5 +1,6 @@
 #include "proto_reflection.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <set>
@@ -18,6 +19,7 @@ using google::protobuf::Reflection;
 struct Filler {
   int counter;
   int repeat;
+  std::vector<const Descriptor*> open;  // messages being filled, outermost first
 
   // Alternating signs and fractions exercise zig-zag-free varints of
   // negative int32 (10 bytes on the wire) and the exact float bits.
@@ -89,13 +91,18 @@ struct Filler {
     }
   }
 
+  // A field whose type is already being filled (the game controller's
+  // GameEvent holds GameEvents) is left out, so recursion ends.
   void fill(Message& m) {
     const Descriptor* d = m.GetDescriptor();
+    open.push_back(d);
     for (int i = 0; i < d->field_count(); ++i) {
       const FieldDescriptor* f = d->field(i);
+      if (f->message_type() && std::find(open.begin(), open.end(), f->message_type()) != open.end()) continue;
       const int times = f->is_repeated() ? repeat : 1;
       for (int k = 0; k < times; ++k) setOne(m, f);
     }
+    open.pop_back();
   }
 };
 
@@ -229,14 +236,16 @@ void compareFieldShape(const FieldDescriptor* fa, const FieldDescriptor* fb,
   if (fa->is_packed() != fb->is_packed()) out.push_back(here + ": packed differs");
 }
 
-void compareMessages(const Message& a, const Message& b, const std::string& path,
+// a_is_part: `a`'s schema declares only part of `b`'s fields; fields only
+// in `b` are then not differences.
+void compareMessages(const Message& a, const Message& b, const std::string& path, bool a_is_part,
                      std::vector<std::string>& out) {
   const Descriptor* da = a.GetDescriptor();
   const Descriptor* db = b.GetDescriptor();
   const Reflection* ra = a.GetReflection();
   const Reflection* rb = b.GetReflection();
   for (int i = 0; i < db->field_count(); ++i) {
-    if (!da->FindFieldByNumber(db->field(i)->number())) {
+    if (!a_is_part && !da->FindFieldByNumber(db->field(i)->number())) {
       out.push_back(path + ": field " + std::to_string(db->field(i)->number()) + " (" +
                     db->field(i)->name() + ") exists only in " + db->full_name());
     }
@@ -266,7 +275,7 @@ void compareMessages(const Message& a, const Message& b, const std::string& path
         const std::string item = here + "[" + std::to_string(k) + "]";
         if (is_message) {
           compareMessages(ra->GetRepeatedMessage(a, fa, k), rb->GetRepeatedMessage(b, fb, k), item,
-                          out);
+                          a_is_part, out);
         } else if (valueText(a, fa, k) != valueText(b, fb, k)) {
           out.push_back(item + ": " + valueText(a, fa, k) + " vs " + valueText(b, fb, k));
         }
@@ -281,7 +290,7 @@ void compareMessages(const Message& a, const Message& b, const std::string& path
       }
       if (!ha) continue;
       if (is_message) {
-        compareMessages(ra->GetMessage(a, fa), rb->GetMessage(b, fb), here, out);
+        compareMessages(ra->GetMessage(a, fa), rb->GetMessage(b, fb), here, a_is_part, out);
       } else if (valueText(a, fa, -1) != valueText(b, fb, -1)) {
         out.push_back(here + ": " + valueText(a, fa, -1) + " vs " + valueText(b, fb, -1));
       }
@@ -314,12 +323,15 @@ void compareEnums(const EnumDescriptor& a, const EnumDescriptor& b, std::vector<
   }
 }
 
-void compareDescriptors(const Descriptor& a, const Descriptor& b, std::set<std::string>& seen,
-                        std::vector<std::string>& out) {
+// a_is_part: `a` may leave out `b`'s optional and repeated fields, never
+// a required one (packets without it would not parse).
+void compareDescriptors(const Descriptor& a, const Descriptor& b, bool a_is_part,
+                        std::set<std::string>& seen, std::vector<std::string>& out) {
   if (!seen.insert(a.full_name() + "|" + b.full_name()).second) return;
   const std::string path = a.name();
   if (a.name() != b.name()) out.push_back(path + ": named " + b.name() + " on the other side");
   for (int i = 0; i < b.field_count(); ++i) {
+    if (a_is_part && !b.field(i)->is_required()) continue;
     if (!a.FindFieldByNumber(b.field(i)->number())) {
       out.push_back(path + ": field " + std::to_string(b.field(i)->number()) + " (" +
                     b.field(i)->name() + ") exists only in " + b.full_name());
@@ -339,7 +351,7 @@ void compareDescriptors(const Descriptor& a, const Descriptor& b, std::set<std::
       out.push_back(here + ": default [" + defaultText(fa) + "] vs [" + defaultText(fb) + "]");
     }
     if (fa->message_type() && fb->message_type()) {
-      compareDescriptors(*fa->message_type(), *fb->message_type(), seen, out);
+      compareDescriptors(*fa->message_type(), *fb->message_type(), a_is_part, seen, out);
     }
     if (fa->enum_type() && fb->enum_type()) compareEnums(*fa->enum_type(), *fb->enum_type(), out);
   }
@@ -348,7 +360,7 @@ void compareDescriptors(const Descriptor& a, const Descriptor& b, std::set<std::
 }  // namespace
 
 void fillEveryField(Message& m, int seed, int repeat) {
-  Filler filler{seed * 100, repeat};
+  Filler filler{seed * 100, repeat, {}};
   filler.fill(m);
 }
 
@@ -366,14 +378,27 @@ std::vector<std::string> unknownFields(const Message& m) {
 
 std::vector<std::string> messageDifferences(const Message& a, const Message& b) {
   std::vector<std::string> out;
-  compareMessages(a, b, a.GetDescriptor()->name(), out);
+  compareMessages(a, b, a.GetDescriptor()->name(), false, out);
+  return out;
+}
+
+std::vector<std::string> partMessageDifferences(const Message& part, const Message& whole) {
+  std::vector<std::string> out;
+  compareMessages(part, whole, part.GetDescriptor()->name(), true, out);
   return out;
 }
 
 std::vector<std::string> descriptorDifferences(const Descriptor& a, const Descriptor& b) {
   std::vector<std::string> out;
   std::set<std::string> seen;
-  compareDescriptors(a, b, seen, out);
+  compareDescriptors(a, b, false, seen, out);
+  return out;
+}
+
+std::vector<std::string> partDescriptorDifferences(const Descriptor& part, const Descriptor& whole) {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  compareDescriptors(part, whole, true, seen, out);
   return out;
 }
 

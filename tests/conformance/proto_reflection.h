@@ -14,7 +14,8 @@ namespace dv::conformance {
 // Sets every field of `m`, recursively: singular fields once, repeated
 // fields `repeat` times, each with a different value (negative numbers,
 // fractions, non-ASCII strings, non-default enum values). `seed` varies the
-// values between calls.
+// values between calls. A field of a message type that contains itself is
+// filled on the outer level only.
 void fillEveryField(google::protobuf::Message& m, int seed, int repeat = 3);
 
 // Paths of fields left unset (singular) or with fewer than two entries
@@ -38,6 +39,17 @@ std::vector<std::string> descriptorDifferences(const google::protobuf::Descripto
                                                const google::protobuf::Descriptor& b);
 std::vector<std::string> enumDifferences(const google::protobuf::EnumDescriptor& a,
                                          const google::protobuf::EnumDescriptor& b);
+
+// Like messageDifferences and descriptorDifferences, for a schema that
+// declares only part of another's fields (our Referee). Values: the fields
+// `part` declares, compared with `whole`'s. Descriptors: every field of
+// `part` must match `whole`'s, and every required field of `whole` must be in
+// `part` (else real packets would not parse); `whole`'s optional and
+// repeated fields may be missing.
+std::vector<std::string> partMessageDifferences(const google::protobuf::Message& part,
+                                                const google::protobuf::Message& whole);
+std::vector<std::string> partDescriptorDifferences(const google::protobuf::Descriptor& part,
+                                                   const google::protobuf::Descriptor& whole);
 
 // "a; b; c" for failure messages.
 std::string joined(const std::vector<std::string>& items);
