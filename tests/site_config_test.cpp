@@ -194,9 +194,9 @@ TEST(SiteConfigParse, TeamNamesIgnoreCase) {
                                        "site.yaml");
   const std::map<std::string, double> teams = {{"tigers mannheim", 145}, {"er-force", 150}, {"robots-r-us", 130}};
   EXPECT_EQ(c.robot_heights.teams, teams);
-  EXPECT_EQ(teamHeight(c.robot_heights, "tigers MANNHEIM"), 145);
-  EXPECT_EQ(teamHeight(c.robot_heights, "ER-FORCE"), 150);
-  EXPECT_FALSE(teamHeight(c.robot_heights, "Unknown Team").has_value());
+  EXPECT_EQ(c.robot_heights.teams.at(teamKey("tigers MANNHEIM")), 145);
+  EXPECT_EQ(c.robot_heights.teams.at(teamKey("ER-FORCE")), 150);
+  EXPECT_EQ(c.robot_heights.teams.count(teamKey("Unknown Team")), 0u);
 
   const std::string what = expectError(kOneCamera + R"(robot_heights:
   teams:

@@ -45,10 +45,10 @@ void logLine(const std::string& line) {
 
 // Written to a temporary name and renamed, so a reader never sees half a file.
 void writeStatusFile(const std::string& path, const std::vector<CameraStatus>& cameras, const SiteRuntime& rt,
-                     const TeamNames& teams) {
+                     const RefereeSnapshot& referee) {
   nlohmann::json j;
   j["config"] = rt.config().path;
-  j["teams"] = {{"yellow", teams.yellow}, {"blue", teams.blue}};
+  j["teams"] = {{"yellow", referee.yellow_name}, {"blue", referee.blue_name}};
   j["cameras"] = nlohmann::json::array();
   for (const CameraStatus& c : cameras) j["cameras"].push_back(toJson(c));
   const std::string tmp = path + ".tmp";
@@ -79,8 +79,7 @@ int serve(const ServeArgs& a) {
     ro.port = config.network.referee_port;
     ro.interface_addr = config.network.interface_addr;
     try {
-      referee = std::make_unique<RefereeListener>(ro, logLine);
-      referee->start();
+      referee = std::make_unique<RefereeListener>(ro);
     } catch (const InputError& e) {
       logLine(std::string("not listening to the game controller: ") + e.what());
     }
@@ -93,19 +92,16 @@ int serve(const ServeArgs& a) {
   auto next_second = started + std::chrono::seconds(1);
   auto next_table = started + std::chrono::duration<double>(config.status_interval);
   uint64_t referee_seen = 0;
-  TeamNames teams;
+  RefereeSnapshot teams;
   std::vector<CameraStatus> last;
   while (!stopRequested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     runtime.tick();
     if (referee && referee->changeCount() != referee_seen) {
-      const RefereeState st = referee->snapshot();
-      referee_seen = referee->changeCount();
-      if (st.yellow_name != teams.yellow || st.blue_name != teams.blue) {
-        logLine("game controller: yellow '" + st.yellow_name + "', blue '" + st.blue_name + "'");
-        teams = {st.yellow_name, st.blue_name};
-        runtime.setTeams(teams);
-      }
+      teams = referee->snapshot();
+      referee_seen = teams.changes;
+      logLine("game controller: yellow '" + teams.yellow_name + "', blue '" + teams.blue_name + "'");
+      runtime.setReferee(teams);
     }
     if (takeReloadRequest()) {
       try {
@@ -128,7 +124,7 @@ int serve(const ServeArgs& a) {
     }
     if (a.duration > 0 && now - started >= std::chrono::duration<double>(a.duration)) break;
   }
-  if (referee) referee->stop();
+  referee.reset();
   runtime.stop();
   runtime.finish();
   std::printf("dotvision serve: %s, %.1f s%s\n", a.config.c_str(),

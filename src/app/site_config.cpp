@@ -233,12 +233,6 @@ std::string teamKey(const std::string& name) {
   return key;
 }
 
-std::optional<double> teamHeight(const SiteRobotHeights& heights, const std::string& team_name) {
-  const auto it = heights.teams.find(teamKey(team_name));
-  if (it == heights.teams.end()) return std::nullopt;
-  return it->second;
-}
-
 SiteConfig parseSiteConfig(const std::string& yaml_text, const std::string& name) {
   YAML::Node root;
   try {

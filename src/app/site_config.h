@@ -89,7 +89,5 @@ std::string describeSiteConfig(const SiteConfig& config);
 // How team names are compared (the table's keys, the referee's names):
 // lower case, surrounding blanks dropped.
 std::string teamKey(const std::string& name);
-// The team table's height for `team_name` (matched by teamKey), if listed.
-std::optional<double> teamHeight(const SiteRobotHeights& heights, const std::string& team_name);
 
 }  // namespace dv::app

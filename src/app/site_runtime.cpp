@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "app/synthetic_camera.h"
@@ -41,19 +42,8 @@ OutputOptions outputOptionsFor(const SiteConfig& c, bool publish_geometry) {
 }
 }  // namespace
 
-void robotHeightsFor(const SiteRobotHeights& h, const TeamNames& teams, double& yellow, double& blue,
-                     std::vector<std::string>* unknown) {
-  auto lookup = [&](const std::string& name) {
-    if (name.empty()) return h.default_mm;
-    if (const std::optional<double> mm = teamHeight(h, name)) return *mm;
-    if (unknown) unknown->push_back(name);
-    return h.default_mm;
-  };
-  yellow = h.yellow_mm ? *h.yellow_mm : lookup(teams.yellow);
-  blue = h.blue_mm ? *h.blue_mm : lookup(teams.blue);
-}
-
 SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config), log_(std::move(log)) {
+  rebuildHeights();
   // Sources first: a synthetic camera brings its scene's geometry.
   std::vector<std::unique_ptr<CameraSource>> sources(config_.cameras.size());
   std::vector<const Geometry*> scene_geometry(config_.cameras.size(), nullptr);
@@ -130,8 +120,20 @@ DetectorOptions SiteRuntime::detectorOptions() const {
   d.report_guessed_ids = config_.detector.guessed_ids;
   d.tracking = config_.detector.tracking;
   d.ball_radius = config_.detector.ball_radius;
-  robotHeightsFor(config_.robot_heights, teams_, d.robot_height_yellow, d.robot_height_blue);
+  d.robot_height_yellow = current_heights_.yellow_mm;
+  d.robot_height_blue = current_heights_.blue_mm;
   return d;
+}
+
+void SiteRuntime::rebuildHeights() {
+  const SiteRobotHeights& h = config_.robot_heights;
+  TeamHeights next(h.default_mm, config_.path);
+  for (const auto& [name, mm] : h.teams) next.addTeam(name, mm, config_.path);
+  if (h.yellow_mm) next.setYellow(*h.yellow_mm, config_.path);
+  if (h.blue_mm) next.setBlue(*h.blue_mm, config_.path);
+  heights_ = std::move(next);
+  current_heights_ = heights_.resolve(referee_);
+  for (const std::string& w : current_heights_.warnings) log_(w);
 }
 
 ProcessorOptions SiteRuntime::processorOptions(const SiteCamera& cam) const {
@@ -172,14 +174,10 @@ std::vector<CameraStatus> SiteRuntime::status() {
   return out;
 }
 
-void SiteRuntime::setTeams(const TeamNames& teams) {
-  teams_ = teams;
-  std::vector<std::string> unknown;
-  double y = 0, b = 0;
-  robotHeightsFor(config_.robot_heights, teams_, y, b, &unknown);
-  for (const std::string& name : unknown)
-    log_("team '" + name + "' is not in the robot-height table of " + config_.path + ": using the default " +
-         std::to_string(static_cast<int>(config_.robot_heights.default_mm)) + " mm");
+void SiteRuntime::setReferee(const RefereeSnapshot& referee) {
+  referee_ = referee;
+  current_heights_ = heights_.resolve(referee_);
+  for (const std::string& w : current_heights_.warnings) log_(w);
   const DetectorOptions d = detectorOptions();
   for (auto& r : runners_) r->setDetectorOptions(d);
 }
@@ -199,6 +197,7 @@ std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
   const SiteConfig previous = config_;
   config_.robot_heights = next.robot_heights;
   config_.detector = next.detector;
+  rebuildHeights();
   config_.status_interval = next.status_interval;
   const DetectorOptions d = detectorOptions();
   for (size_t i = 0; i < runners_.size(); ++i) {
@@ -231,10 +230,10 @@ std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
       notes.push_back(std::string("network target not changed: ") + e.what());
     }
   }
-  double y = 0, b = 0;
-  robotHeightsFor(config_.robot_heights, teams_, y, b);
-  notes.push_back("detector options and robot heights applied (yellow " + std::to_string(static_cast<int>(y)) +
-                  " mm, blue " + std::to_string(static_cast<int>(b)) + " mm)");
+  char heights[96];
+  std::snprintf(heights, sizeof heights, "yellow %.1f mm, blue %.1f mm", current_heights_.yellow_mm,
+                current_heights_.blue_mm);
+  notes.push_back(std::string("detector options and robot heights applied (") + heights + ")");
   return notes;
 }
 

@@ -17,22 +17,14 @@
 #include "app/site_config.h"
 #include "geometry/geometry_io.h"
 #include "live/camera_status.h"
+#include "net/referee_listener.h"
+#include "net/team_heights.h"
 
 namespace dv {
 class GeometryPublisher;
 }
 
 namespace dv::app {
-
-struct TeamNames {
-  std::string yellow, blue;  // from the referee; "" unknown
-};
-
-// Robot heights (mm) for the config and the teams playing: fixed per-color
-// heights first, else the team table (case-insensitive), else the default.
-// `unknown` receives the team names not in the table.
-void robotHeightsFor(const SiteRobotHeights& h, const TeamNames& teams, double& yellow, double& blue,
-                     std::vector<std::string>* unknown = nullptr);
 
 class SiteRuntime {
  public:
@@ -47,8 +39,9 @@ class SiteRuntime {
   std::vector<CameraStatus> status();
   // A validated new config; returns what was applied and what was not.
   std::vector<std::string> reload(const SiteConfig& next);
-  // The game controller's team names changed: new heights from the next frame.
-  void setTeams(const TeamNames& teams);
+  // The game controller's teams changed: new heights from the next frame
+  // (unknown team names are logged once each).
+  void setReferee(const RefereeSnapshot& referee);
   void tick() { outputs_->tick(); }
   const SiteConfig& config() const { return config_; }
   const Geometry& geometry() const { return geometry_; }
@@ -59,12 +52,15 @@ class SiteRuntime {
 
  private:
   DetectorOptions detectorOptions() const;
+  void rebuildHeights();  // heights_ from config_.robot_heights, then resolved for referee_
   ProcessorOptions processorOptions(const SiteCamera& cam) const;
 
   SiteConfig config_;
   LogFn log_;
   Geometry geometry_;
-  TeamNames teams_;
+  TeamHeights heights_;
+  RefereeSnapshot referee_;
+  TeamHeightsResult current_heights_;
   std::unique_ptr<PacketOutputs> outputs_;
   std::unique_ptr<GeometryPublisher> geometry_publisher_;
   std::thread geometry_thread_;
