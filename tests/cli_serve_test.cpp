@@ -1,0 +1,190 @@
+// `dotvision serve` as an operator runs it: a site config validated with
+// --check, every config error naming file, line and key; a live run on
+// loopback multicast whose packets carry Unix time; the game controller's
+// team names changing the robot heights at the next frames; SIGHUP with a
+// broken file keeping the old config, with a good one applying new heights
+// without a restart; SIGTERM ending with the summary.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "dotvision/ssl_referee.pb.h"
+#include "dotvision/ssl_wrapper.pb.h"
+#include "net/multicast.h"
+#include "temp_dir.h"
+
+namespace dv {
+namespace {
+
+std::string readAll(const std::string& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int runCli(const std::string& args, std::string& out) {
+  const std::string file = "/tmp/dv_serve_cli_" + std::to_string(::getpid()) + ".txt";
+  const int status = std::system((std::string("'") + DV_CLI_PATH + "' " + args + " >" + file + " 2>&1").c_str());
+  out = readAll(file);
+  std::remove(file.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(ServeCheck, TheExampleIsValidAndErrorsNameFileLineAndKey) {
+  std::string out;
+  EXPECT_EQ(runCli("serve --check " + std::string(DV_SOURCE_DIR) + "/config/site.example.yaml", out), 0) << out;
+  EXPECT_NE(out.find("valid"), std::string::npos) << out;
+  TempDir dir("dv_serve_check");
+  std::ofstream(dir.file("bad.yaml")) << "cameras:\n  - id: 0\n    source: synthetic://default/0\n    treads: 2\n";
+  EXPECT_EQ(runCli("serve --check " + dir.file("bad.yaml"), out), 2) << out;
+  EXPECT_NE(out.find("bad.yaml:4"), std::string::npos) << out;
+  EXPECT_NE(out.find("cameras[0].treads"), std::string::npos) << out;
+}
+
+// One 1224 x 1024 camera over a Division B half with both teams in view.
+const char* kScene = R"(name: serve_test
+seed: 3
+field: division_b
+cameras:
+  - {id: 0, position: [-2250, 0, 5000], look_at: [-2250, 0, 0], up: [-1, 0, 0], focal_length: 875, distortion: 0.03, size: [1224, 1024]}
+random_robots: {yellow: 4, blue: 4, camera: 0, margin_px: 80}
+ball: {position: [-1800, 400]}
+frames: 1
+)";
+
+std::string siteConfig(const std::string& scene, int vision_port, int referee_port, double default_height,
+                       const std::string& tail = "") {
+  std::ostringstream s;
+  s << "cameras:\n  - id: 0\n    source: synthetic://" << scene << "/0\n    threads: 1\n"
+    << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port << ", interface: 127.0.0.1}\n"
+    << "  referee: {enabled: true, group: 224.5.23.1, port: " << referee_port << "}\n"
+    << "robot_heights:\n  default: " << default_height << "\n  teams: {ER-Force: 150}\n" << tail
+    << "status_interval: 0\n";
+  return s.str();
+}
+
+class ServeLive : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::ofstream(dir_.file("scene.yaml")) << kScene;
+    vision_port_ = 42000 + ::getpid() % 1000;
+    referee_port_ = vision_port_ + 1000;
+    config_ = dir_.file("site.yaml");
+    std::ofstream(config_) << siteConfig(dir_.file("scene.yaml"), vision_port_, referee_port_, 140);
+  }
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  void start() {
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      const std::string log = dir_.file("serve.log");
+      if (!freopen(log.c_str(), "w", stdout)) _exit(126);
+      ::dup2(STDOUT_FILENO, STDERR_FILENO);  // one file offset for both
+      execl(DV_CLI_PATH, DV_CLI_PATH, "serve", config_.c_str(), nullptr);
+      _exit(127);
+    }
+  }
+  // Yellow and blue heights of the next detection packet with both teams, within timeout.
+  bool nextHeights(MulticastReceiver& rx, double& yellow, double& blue, double& t_capture, double timeout_s = 30) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    std::string payload;
+    while (std::chrono::steady_clock::now() < until) {
+      if (!rx.receive(0.5, payload)) continue;
+      ssl::SSL_WrapperPacket p;
+      if (!p.ParseFromString(payload) || !p.has_detection()) continue;
+      const auto& d = p.detection();
+      if (d.robots_yellow_size() == 0 || d.robots_blue_size() == 0) continue;
+      yellow = d.robots_yellow(0).height();
+      blue = d.robots_blue(0).height();
+      t_capture = d.t_capture();
+      return true;
+    }
+    return false;
+  }
+  // Waits until packets carry these heights (the change applies from the next frame on).
+  bool waitForHeights(MulticastReceiver& rx, double want_yellow, double want_blue, double timeout_s = 20) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    double y = 0, b = 0, t = 0;
+    while (std::chrono::steady_clock::now() < until)
+      if (nextHeights(rx, y, b, t, 2) && y == want_yellow && b == want_blue) return true;
+    ADD_FAILURE() << "last heights: yellow " << y << ", blue " << b;
+    return false;
+  }
+
+  TempDir dir_{"dv_serve_live"};
+  int vision_port_ = 0, referee_port_ = 0;
+  std::string config_;
+  pid_t pid_ = -1;
+};
+
+ssl::Referee refereePacket(const std::string& yellow, const std::string& blue) {
+  ssl::Referee r;
+  r.set_packet_timestamp(1700000000000000ull);
+  r.set_stage(ssl::Referee::NORMAL_FIRST_HALF);
+  r.set_command(ssl::Referee::STOP);
+  r.set_command_counter(1);
+  r.set_command_timestamp(1700000000000000ull);
+  for (auto [team, name] : {std::pair{r.mutable_yellow(), yellow}, std::pair{r.mutable_blue(), blue}}) {
+    team->set_name(name);
+    team->set_score(0);
+    team->set_red_cards(0);
+    team->set_yellow_cards(0);
+    team->set_timeouts(4);
+    team->set_timeout_time(300000000);
+    team->set_goalkeeper(0);
+  }
+  return r;
+}
+
+TEST_F(ServeLive, RefereeTeamsReloadAndStopAllTakeEffectWhileRunning) {
+  MulticastReceiver rx("224.5.23.2", static_cast<uint16_t>(vision_port_), "127.0.0.1");
+  MulticastSender referee("224.5.23.1", static_cast<uint16_t>(referee_port_), "127.0.0.1");
+  start();
+  double y = 0, b = 0, t = 0;
+  ASSERT_TRUE(nextHeights(rx, y, b, t, 60)) << readAll(dir_.file("serve.log"));
+  EXPECT_EQ(y, 140);
+  EXPECT_EQ(b, 140);
+  const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  EXPECT_NEAR(t, now, 5);  // Unix seconds
+
+  // The game controller names the teams: yellow is in the table (any case), blue is not.
+  const std::string gc = refereePacket("er-force", "Unknown Bots").SerializeAsString();
+  for (int i = 0; i < 5; ++i) referee.send(gc);
+  EXPECT_TRUE(waitForHeights(rx, 150, 140));
+
+  // A broken file is refused; the running config stays and packets keep coming.
+  std::ofstream(config_) << "cameras: [\n";
+  ::kill(pid_, SIGHUP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_TRUE(waitForHeights(rx, 150, 140));
+  // A good one applies new heights without a restart.
+  std::ofstream(config_) << siteConfig(dir_.file("scene.yaml"), vision_port_, referee_port_, 130,
+                                       "  blue: 135\n");
+  ::kill(pid_, SIGHUP);
+  EXPECT_TRUE(waitForHeights(rx, 150, 135));
+
+  ::kill(pid_, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid_, &status, 0), pid_);
+  pid_ = -1;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const std::string log = readAll(dir_.file("serve.log"));
+  EXPECT_NE(log.find("reload refused, the running config stays"), std::string::npos) << log;
+  EXPECT_NE(log.find("team \"Unknown Bots\" (blue) is not in the team height table"), std::string::npos) << log;
+  EXPECT_NE(log.find("stopped by a signal"), std::string::npos) << log;
+  EXPECT_NE(log.find("camera 0: "), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace dv
