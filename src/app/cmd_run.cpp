@@ -429,7 +429,8 @@ int runSynthetic(const RunArgs& a) {
   const CameraCalibration& first = channels.front().calibration;
   printSummary(state,
                source.describe() + ", camera " + cams + ", " + std::to_string(first.image_width) + "x" +
-                   std::to_string(first.image_height) + (spec.bayer ? " Bayer" : " RGB"),
+                   std::to_string(first.image_height) + (spec.bayer ? " Bayer" : " RGB") +
+                   (stopRequested() ? " (stopped by a signal)" : ""),
                channels);
   return kExitOk;
 }
