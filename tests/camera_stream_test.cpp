@@ -68,6 +68,8 @@ class MjpegServer {
       ::_exit(127);
     }
   }
+  // Freezes the server with its connection open: a camera that hangs.
+  void freeze() { ::kill(pid_, SIGSTOP); }
   void stop() {
     if (pid_ <= 0) return;
     ::kill(pid_, SIGKILL);
@@ -177,6 +179,22 @@ TEST(CameraStream, ServerGoneIsLostAndReconnectWaitsForItsReturn) {
     EXPECT_GT(f.t_capture, previous);
     previous = f.t_capture;
   }
+}
+
+TEST(CameraStream, StreamThatHangsIsLost) {
+  REQUIRE_FFMPEG();
+  MjpegServer server(freePort());
+  auto source = openWhenUp(server.url());
+  ASSERT_TRUE(source);
+  Frame f;
+  std::string why;
+  ASSERT_EQ(grabFrame(*source, f, why), GrabStatus::Frame) << why;
+  server.freeze();
+  GrabStatus s = GrabStatus::Frame;
+  for (int i = 0; i < 60 && s != GrabStatus::Lost; ++i) s = source->grab(f, 0.25, why);  // 15 s safety limit
+  EXPECT_EQ(s, GrabStatus::Lost) << "a stream that sends nothing more was not noticed";
+  EXPECT_FALSE(why.empty());
+  source.reset();  // must not wait for the frozen server for ever
 }
 
 TEST(CameraStream, SettingsThatDoNotMapAreClearErrors) {
