@@ -165,7 +165,8 @@ CameraStatus CameraRunner::status() {
     s.robot_height_blue = heights_[1];
   }
   if (!failure_.empty()) s.counters.last_problem = failure_;
-  if (health_.update(s))
+  s.health_changed = health_.update(s);
+  if (s.health_changed)
     log_("camera " + std::to_string(s.camera_id) + ": health " + healthName(s.health) +
          (s.health_reason.empty() ? "" : ": " + s.health_reason));
   return s;

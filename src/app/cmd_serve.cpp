@@ -33,6 +33,7 @@ struct ServeArgs {
   bool check = false;
   bool quiet = false;
   std::string status_file;
+  std::string record_raw;
   double duration = 0;
 };
 
@@ -63,6 +64,7 @@ void writeStatusFile(const std::string& path, const std::vector<CameraStatus>& c
 
 int serve(const ServeArgs& a) {
   SiteConfig config = loadSiteConfig(a.config);
+  if (!a.record_raw.empty()) config.record.raw_dir = a.record_raw;
   std::printf("%s", describeSiteConfig(config).c_str());
   if (a.check) {
     std::printf("%s: valid\n", a.config.c_str());
@@ -103,9 +105,12 @@ int serve(const ServeArgs& a) {
       logLine("game controller: yellow '" + teams.yellow_name + "', blue '" + teams.blue_name + "'");
       runtime.setReferee(teams);
     }
+    if (takeDumpRequest() && !runtime.dumpRaw("SIGUSR1"))
+      logLine("no raw frames to write (set record.raw_dir or --record-raw) or a dump is still being written");
     if (takeReloadRequest()) {
       try {
-        const SiteConfig next = loadSiteConfig(a.config);
+        SiteConfig next = loadSiteConfig(a.config);
+        if (!a.record_raw.empty()) next.record.raw_dir = a.record_raw;
         for (const std::string& note : runtime.reload(next)) logLine("reload: " + note);
       } catch (const InputError& e) {
         logLine(std::string("reload refused, the running config stays: ") + e.what());
@@ -158,6 +163,9 @@ CommandFn addServeCommand(CLI::App& root) {
   cmd->add_flag("--check", a->check, "validate the config and exit");
   cmd->add_flag("--quiet", a->quiet, "no status table on the terminal");
   cmd->add_option("--status-file", a->status_file, "write every camera's status record here as JSON each second");
+  cmd->add_option("--record-raw", a->record_raw,
+                  "keep the last seconds of raw frames (record.raw_seconds) and write them here on SIGUSR1 "
+                  "or a change of health (overrides record.raw_dir)");
   cmd->add_option("--duration", a->duration, "stop after this many seconds (default: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   return [a] { return serve(*a); };

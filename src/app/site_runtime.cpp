@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <thread>
 
+#include "app/raw_dump.h"
 #include "app/synthetic_camera.h"
 #include "camera/open_camera.h"
 #include "core/error.h"
@@ -13,6 +15,8 @@
 namespace dv::app {
 
 namespace {
+constexpr size_t kRawRingBytes = size_t{1} << 30;  // per camera: 10 s of 1224 x 1024, 3.4 s of 2448 x 2048 at 60 fps
+
 double unixNow() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -89,6 +93,9 @@ SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config),
         geometry_.cameras.push_back(*c);
     }
   }
+  // What the cameras use is what is published (and written to a raw dump):
+  // the protocol's single-precision floats, so replays match to the bit.
+  geometry_ = geometryFromProto(toProto(geometry_), "geometry");
   if (net.geometry == "publish") {
     GeometryPublisherOptions po;
     po.group = net.vision_group;
@@ -109,7 +116,19 @@ SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config),
     runners_.push_back(std::make_unique<CameraRunner>(*calib, geometry_.field, processorOptions(cam),
                                                       std::move(sources[i]), *outputs_, log_));
     config_index_.push_back(i);
+    if (!config_.record.raw_dir.empty()) {
+      auto ring = std::make_shared<RawRing>(config_.record.raw_seconds, kRawRingBytes);
+      runners_.back()->setFrameHook([ring, buffer = std::string()](const Frame& f, const ssl::SSL_WrapperPacket& p) mutable {
+        p.SerializeToString(&buffer);  // reuses the buffer's capacity
+        ring->add(f, buffer);
+      });
+      rings_.push_back(ring);
+    }
   }
+  if (!rings_.empty())
+    log_("keeping the last " + std::to_string(config_.record.raw_seconds) + " s of raw frames per camera for " +
+         config_.record.raw_dir + " (SIGUSR1" + (config_.record.on_health_change ? " or a change of health" : "") +
+         " writes them)");
   if (runners_.empty()) throw InputError(config_.path, "no camera could be started (see the lines above)");
 }
 
@@ -161,16 +180,54 @@ void SiteRuntime::start() {
   for (auto& r : runners_) r->start();
 }
 
+bool SiteRuntime::dumpRaw(const std::string& why) {
+  if (rings_.empty() || dumping_.exchange(true)) return false;
+  if (dump_thread_.joinable()) dump_thread_.join();
+  std::vector<RawDumpCamera> cams;
+  size_t frames = 0;
+  for (size_t i = 0; i < rings_.size(); ++i) {
+    cams.push_back({runners_[i]->cameraId(), rings_[i]->snapshot()});
+    frames += cams.back().frames.size();
+  }
+  if (frames == 0) {
+    log_("raw frames not written (" + why + "): no frame processed yet");
+    dumping_ = false;
+    return true;
+  }
+  const std::time_t t = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
+  const std::string dir = config_.record.raw_dir + "/" + stamp;
+  dump_thread_ = std::thread([this, cams = std::move(cams), dir, why] {
+    try {
+      const size_t n = writeRawDump(dir, cams, geometry_);
+      log_("raw frames written (" + why + "): " + std::to_string(n) + " frames in " + dir +
+           "; replay with: dotvision run --source " + dir + " --geometry " + dir + "/geometry.json --camera-id " +
+           std::to_string(cams.front().camera_id));
+    } catch (const std::exception& e) {
+      log_(std::string("raw frames not written: ") + e.what());
+    }
+    dumping_ = false;
+  });
+  return true;
+}
+
 void SiteRuntime::stop() {
   for (auto& r : runners_) r->stop();
   if (geometry_publisher_) geometry_publisher_->stop();
   if (geometry_thread_.joinable()) geometry_thread_.join();
+  if (dump_thread_.joinable()) dump_thread_.join();
 }
 
 std::vector<CameraStatus> SiteRuntime::status() {
   std::vector<CameraStatus> out;
   out.reserve(runners_.size());
-  for (auto& r : runners_) out.push_back(r->status());
+  std::string changed;
+  for (auto& r : runners_) {
+    out.push_back(r->status());
+    if (out.back().health_changed) changed += (changed.empty() ? "camera " : ", ") + std::to_string(out.back().camera_id);
+  }
+  if (!changed.empty() && config_.record.on_health_change) dumpRaw("health changed on " + changed);
   return out;
 }
 

@@ -8,7 +8,9 @@
 // camera settings and network targets change in place, tracks stay;
 // changes that need a restart (cameras added, removed or moved to another
 // source) are named and not applied.
+#include <atomic>
 #include <memory>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "app/site_config.h"
 #include "geometry/geometry_io.h"
 #include "live/camera_status.h"
+#include "live/raw_ring.h"
 #include "net/referee_listener.h"
 #include "net/team_heights.h"
 
@@ -43,6 +46,10 @@ class SiteRuntime {
   // (unknown team names are logged once each).
   void setReferee(const RefereeSnapshot& referee);
   void tick() { outputs_->tick(); }
+  // Writes the raw rings (record.raw_dir) to a new folder, off the main
+  // loop's thread; `why` goes into the log line. False when no ring is kept
+  // or a dump is still being written.
+  bool dumpRaw(const std::string& why);
   const SiteConfig& config() const { return config_; }
   const Geometry& geometry() const { return geometry_; }
   size_t cameraCount() const { return runners_.size(); }
@@ -66,6 +73,9 @@ class SiteRuntime {
   std::thread geometry_thread_;
   std::vector<std::unique_ptr<CameraRunner>> runners_;
   std::vector<size_t> config_index_;  // runner i serves config_.cameras[config_index_[i]]
+  std::vector<std::shared_ptr<RawRing>> rings_;  // per runner, when raw frames are kept
+  std::thread dump_thread_;
+  std::atomic<bool> dumping_{false};
 };
 
 }  // namespace dv::app

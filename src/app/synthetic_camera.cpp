@@ -34,9 +34,10 @@ SyntheticCamera::SyntheticCamera(const std::string& spec) : describe_(spec) {
   if (!std::all_of(id_text.begin(), id_text.end(), [](unsigned char c) { return std::isdigit(c); }))
     throw InputError(spec, "camera id '" + id_text + "' is not a number");
   camera_id_ = static_cast<uint32_t>(std::stoul(id_text));
-  SceneSpec s = (scene.find('/') != std::string::npos || scene.find('.') != std::string::npos)
-                    ? loadScene(scene)
-                    : presetScene(scene);
+  SceneSpec s = scene == "default" ? defaultScene()  // the built-in field of `dotvision run`
+               : (scene.find('/') != std::string::npos || scene.find('.') != std::string::npos)
+                   ? loadScene(scene)
+                   : presetScene(scene);
   s.frames = std::min(s.frames, kMaxLoopFrames);
   size_t index = s.cameras.size();
   std::string ids;

@@ -1,6 +1,7 @@
 #pragma once
 // A camera of a synthetic scene as a live source (`synthetic://SCENE/ID`,
-// SCENE a preset name or a scene file): the scene's frames for that camera
+// SCENE `default` (the built-in scene of `run`), a preset name or a scene
+// file): the scene's frames for that camera
 // are rendered once at start and then delivered at the scene's frame rate,
 // looping, with Unix time stamps and frame numbers that keep counting, so
 // `serve` on synthetic cameras behaves as on real ones.

@@ -1,4 +1,5 @@
 #include "io/frame_source.h"
+#include "io/frame_times.h"
 
 #include <glob.h>
 
@@ -181,6 +182,14 @@ bool ImageSequenceSource::next(Frame& f) {
     }
     f.index = index;
     f.t_capture = options_.time_origin + index / options_.fps;
+    if (!timings_.empty()) {
+      const auto it = timings_.find(fs::path(path).filename().string());
+      if (it != timings_.end()) {
+        f.index = it->second.index;
+        f.t_capture = it->second.t_capture;
+        if (f.format != PixelFormat::Bgr8 && it->second.format != PixelFormat::Bgr8) f.format = it->second.format;
+      }
+    }
     f.name = path;
     return true;
   }
@@ -292,7 +301,9 @@ std::unique_ptr<FrameSource> openFrameSource(const std::string& spec,
     paths = selectSceneCamera(paths, options.scene_camera);
     if (paths.empty())
       throw InputError(spec, "the directory holds no frames of camera " + std::to_string(options.scene_camera));
-    return std::make_unique<ImageSequenceSource>(std::move(paths), options, "images in " + spec);
+    auto source = std::make_unique<ImageSequenceSource>(std::move(paths), options, "images in " + spec);
+    source->setTimings(readFrameTimes(spec));  // a raw dump: the frames' own numbers and times
+    return source;
   }
   if (isImageFileName(spec)) {
     return std::make_unique<ImageSequenceSource>(std::vector<std::string>{spec}, options,

@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,14 @@ class FrameSource {
   std::vector<SkipRecord> skipped_;
 };
 
+// A frame's number, capture time (Unix s) and layout as a camera delivered
+// it (a raw dump's frame_times.csv, src/io/frame_times.h).
+struct FrameTiming {
+  uint32_t index = 0;
+  double t_capture = 0;
+  PixelFormat format = PixelFormat::Bgr8;
+};
+
 struct FrameSourceOptions {
   double fps = 60;  // sequence timestamps: index / fps
   double time_origin = 0;  // s added to every sequence time (run: Unix time at start)
@@ -89,6 +98,9 @@ class ImageSequenceSource : public FrameSource {
   std::string describe() const override { return description_; }
   long expectedCount() const override { return static_cast<long>(paths_.size()); }
   const std::vector<std::string>& paths() const { return paths_; }
+  // Frame numbers, capture times and layouts by file name (a raw dump's
+  // frame_times.csv); files listed there take these instead of index / fps.
+  void setTimings(std::map<std::string, FrameTiming> timings) { timings_ = std::move(timings); }
 
  private:
   std::vector<std::string> paths_;
@@ -96,6 +108,7 @@ class ImageSequenceSource : public FrameSource {
   std::string description_;
   size_t cursor_ = 0;
   std::vector<unsigned char> file_bytes_;  // reused read buffer
+  std::map<std::string, FrameTiming> timings_;
 };
 
 // A video file decoded by OpenCV (FFmpeg backend). Timestamps come from the

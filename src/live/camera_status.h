@@ -37,6 +37,7 @@ struct CameraStatus {
   double robot_height_yellow = 0, robot_height_blue = 0;  // mm in use
   Health health = Health::Ok;
   std::string health_reason;  // "" when ok
+  bool health_changed = false;  // differs from the previous record's (logged once)
 };
 
 nlohmann::json toJson(const CameraStatus& s);
