@@ -18,43 +18,16 @@
 #include "geometry/proto_json.h"
 #include "synth/scene.h"
 #include "synth/renderer.h"
+#include "cli_process.h"
 #include "temp_dir.h"
 
 namespace dv {
 namespace {
 
-std::string readAll(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    if (!freopen(log.c_str(), "w", stdout)) _exit(126);
-    ::dup2(STDOUT_FILENO, STDERR_FILENO);
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(DV_CLI_PATH));
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(DV_CLI_PATH, argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-int waitExit(pid_t pid) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(RunLive, SigtermStopsWithTheSummaryAndAWholeSslLog) {
   TempDir dir("dv_run_sigterm");
   // 60 frames rendered one by one: several seconds of work, stopped early.
-  const pid_t pid = spawn({"run", "--scene", "motion_60fps_flicker", "--no-publish", "--record",
+  const pid_t pid = spawnCli({"run", "--scene", "motion_60fps_flicker", "--no-publish", "--record",
                            dir.file("rec.log"), "--jsonl", dir.file("rec.jsonl")},
                           dir.file("out.txt"));
   // Stop once a few frames were written.
@@ -83,7 +56,7 @@ TEST(RunLive, RealtimeReplayKeepsTheSpacingInUnixTimeAndReportsLatency) {
   SceneSpec spec = presetScene("motion_60fps_flicker");
   spec.frames = 12;
   writeScene(spec, dir.path().string());
-  const pid_t pid = spawn({"run", "--source", dir.path().string(), "--geometry", dir.file("geometry.json"),
+  const pid_t pid = spawnCli({"run", "--source", dir.path().string(), "--geometry", dir.file("geometry.json"),
                            "--camera-id", "0", "--realtime", "--no-publish", "--jsonl", dir.file("det.jsonl"),
                            "--status-interval", "0.2"},
                           dir.file("out.txt"));

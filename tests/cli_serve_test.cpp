@@ -18,25 +18,11 @@
 #include "dotvision/ssl_wrapper.pb.h"
 #include "geometry/proto_json.h"
 #include "net/multicast.h"
+#include "cli_process.h"
 #include "temp_dir.h"
 
 namespace dv {
 namespace {
-
-std::string readAll(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-int runCli(const std::string& args, std::string& out) {
-  const std::string file = "/tmp/dv_serve_cli_" + std::to_string(::getpid()) + ".txt";
-  const int status = std::system((std::string("'") + DV_CLI_PATH + "' " + args + " >" + file + " 2>&1").c_str());
-  out = readAll(file);
-  std::remove(file.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 TEST(ServeCheck, TheExampleIsValidAndErrorsNameFileLineAndKey) {
   std::string out;
@@ -86,16 +72,7 @@ class ServeLive : public ::testing::Test {
       ::waitpid(pid_, nullptr, 0);
     }
   }
-  void start() {
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      const std::string log = dir_.file("serve.log");
-      if (!freopen(log.c_str(), "w", stdout)) _exit(126);
-      ::dup2(STDOUT_FILENO, STDERR_FILENO);  // one file offset for both
-      execl(DV_CLI_PATH, DV_CLI_PATH, "serve", config_.c_str(), nullptr);
-      _exit(127);
-    }
-  }
+  void start() { pid_ = spawnCli({"serve", config_}, dir_.file("serve.log")); }
   // Yellow and blue heights of the next detection packet with both teams, within timeout.
   bool nextHeights(MulticastReceiver& rx, double& yellow, double& blue, double& t_capture, double timeout_s = 30) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
@@ -176,10 +153,8 @@ TEST_F(ServeLive, RefereeTeamsReloadAndStopAllTakeEffectWhileRunning) {
   EXPECT_TRUE(waitForHeights(rx, 150, 135));
 
   ::kill(pid_, SIGTERM);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid_, &status, 0), pid_);
+  EXPECT_EQ(waitExit(pid_), 0);
   pid_ = -1;
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   const std::string log = readAll(dir_.file("serve.log"));
   EXPECT_NE(log.find("reload refused, the running config stays"), std::string::npos) << log;
   EXPECT_NE(log.find("team \"Unknown Bots\" (blue) is not in the team height table"), std::string::npos) << log;

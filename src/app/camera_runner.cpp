@@ -1,16 +1,15 @@
 #include "app/camera_runner.h"
 
+
 #include <chrono>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "detection/detection_frame.h"
 
 namespace dv::app {
 
 namespace {
-double unixNow() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 constexpr size_t kTimesReserved = 1 << 20;  // a summary's worth (4.6 hours at 60 fps)
 }  // namespace
 
@@ -35,7 +34,7 @@ CameraRunner::CameraRunner(const CameraCalibration& calibration, const FieldMode
 CameraRunner::~CameraRunner() { stop(); }
 
 void CameraRunner::start() {
-  last_status_t_ = unixNow();
+  last_status_t_ = unixSeconds();
   camera_.start();
 }
 void CameraRunner::stop() { camera_.stop(); }
@@ -93,11 +92,11 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   stamp.camera_id = calibration_.camera_id;
   stamp.frame_number = frame.index;
   stamp.t_capture = frame.t_capture;
-  stamp.t_sent = unixNow();
+  stamp.t_sent = unixSeconds();
   fillDetectionPacket(detections_, stamp, packet_);
   outputs_.detection(packet_);
   const double arrival = frame.t_arrival > 0 ? frame.t_arrival : t_taken;
-  const double t_done = unixNow();
+  const double t_done = unixSeconds();
   if (hook_) hook_(frame, packet_);
 
   std::lock_guard<std::mutex> lock(mutex_);
@@ -134,7 +133,7 @@ CameraStatus CameraRunner::status() {
   s.camera_id = calibration_.camera_id;
   s.source = camera_.source().describe();
   s.counters = camera_.counters();
-  s.t_unix = unixNow();
+  s.t_unix = unixSeconds();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     s.backend = backend_;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/camera_processor.h"
+
 #include "app/camera_runner.h"
 #include "app/commands.h"
 #include "app/packet_outputs.h"
@@ -22,6 +23,7 @@
 #include "camera/open_camera.h"
 #include "app/debug_views.h"
 #include "app/synthetic_source.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "dotvision/ssl_wrapper.pb.h"
 #include "eval/metrics.h"
@@ -85,9 +87,6 @@ OutputOptions outputOptions(const RunArgs& a, bool publish_geometry) {
   return o;
 }
 
-double unixNow() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 // One camera: its processor (built on the first frame, whose size and pixel
 // format it then expects), reused detections and packet, and statistics.
@@ -166,7 +165,7 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
   stamp.camera_id = ch.calibration.camera_id;
   stamp.frame_number = frame.index;
   stamp.t_capture = frame.t_capture;
-  stamp.t_sent = unixNow();
+  stamp.t_sent = unixSeconds();
   fillDetectionPacket(ch.detections, stamp, ch.packet);
   s.outputs.detection(ch.packet);
 
@@ -338,7 +337,7 @@ int runOnSource(const RunArgs& a) {
   so.files.fps = a.fps;
   so.files.bayer = bayerFormatFromName(a.bayer, "--bayer");
   so.files.scene_camera = calibration->camera_id;
-  so.files.time_origin = unixNow();  // packets carry Unix time, spaced as the files are
+  so.files.time_origin = unixSeconds();  // packets carry Unix time, spaced as the files are
   so.realtime = a.realtime;
   for (const std::string& item : a.camera_set) so.settings.push_back(parseCameraSetting(item, "--camera-set"));
   std::vector<std::string> settings_report;
@@ -347,7 +346,6 @@ int runOnSource(const RunArgs& a) {
     std::printf("dotvision run: %s: %s\n", a.source.c_str(), line.c_str());
 
   PacketOutputs outputs(outputOptions(a, !from_network), toProto(geometry));
-  installSignalHandlers();
   if (source->live()) return runLive(a, *calibration, geometry.field, std::move(source), outputs);
 
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, false, {}};
@@ -404,8 +402,7 @@ int runSynthetic(const RunArgs& a) {
   const Geometry geometry = source.renderer().geometry();
 
   PacketOutputs outputs(outputOptions(a, true), toProto(geometry));
-  installSignalHandlers();
-  const double origin = unixNow();  // packets carry Unix time
+  const double origin = unixSeconds();  // packets carry Unix time
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, true, {}};
   // Channel k serves scene camera camera_indices[k].
   std::vector<Channel> channels(camera_indices.size());
@@ -505,6 +502,7 @@ CommandFn addRunCommand(CLI::App& root) {
   cmd->add_flag("--quiet", a->quiet, "no progress or status lines on the terminal");
 
   return [a] {
+    installSignalHandlers();  // first: every thread started later inherits the blocked signals
     // Validate the Bayer name up front so a typo fails before any work.
     bayerFormatFromName(a->bayer, "--bayer");
     processorOptions(*a);

@@ -63,6 +63,7 @@ void writeStatusFile(const std::string& path, const std::vector<CameraStatus>& c
 }
 
 int serve(const ServeArgs& a) {
+  installSignalHandlers();  // first: every thread started later inherits the blocked signals
   SiteConfig config = loadSiteConfig(a.config);
   if (!a.record_raw.empty()) config.record.raw_dir = a.record_raw;
   std::printf("%s", describeSiteConfig(config).c_str());
@@ -71,7 +72,6 @@ int serve(const ServeArgs& a) {
     return kExitOk;
   }
   std::fflush(stdout);
-  installSignalHandlers();
   SiteRuntime runtime(config, logLine);
 
   std::unique_ptr<RefereeListener> referee;

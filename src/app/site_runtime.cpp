@@ -1,5 +1,6 @@
 #include "app/site_runtime.h"
 
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "app/raw_dump.h"
 #include "app/synthetic_camera.h"
 #include "camera/open_camera.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "net/geometry_publisher.h"
 
@@ -17,9 +19,6 @@ namespace dv::app {
 namespace {
 constexpr size_t kRawRingBytes = size_t{1} << 30;  // per camera: 10 s of 1224 x 1024, 3.4 s of 2448 x 2048 at 60 fps
 
-double unixNow() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
 
 std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<std::string>& report) {
@@ -28,7 +27,7 @@ std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<
   so.files.fps = cam.fps;
   so.files.bayer = bayerFormatFromName(cam.bayer, "camera " + std::to_string(cam.id) + " bayer");
   so.files.scene_camera = cam.id;
-  so.files.time_origin = unixNow();
+  so.files.time_origin = unixSeconds();
   so.realtime = cam.realtime;
   so.settings = cam.settings;
   return openCameraSource(cam.source, so, &report);

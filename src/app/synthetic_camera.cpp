@@ -1,10 +1,12 @@
 #include "app/synthetic_camera.h"
 
+
 #include <algorithm>
 #include <chrono>
 #include <thread>
 
 #include "app/synthetic_source.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
@@ -15,12 +17,6 @@ namespace {
 constexpr const char* kPrefix = "synthetic://";
 constexpr int kMaxLoopFrames = 120;  // frames rendered at start (memory: 5 MB each at 2448x2048)
 
-double steadyNow() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-double unixNow() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 }  // namespace
 
 bool isSyntheticSpec(const std::string& spec) { return spec.rfind(kPrefix, 0) == 0; }
@@ -62,22 +58,22 @@ GrabStatus SyntheticCamera::grab(Frame& f, double timeout_s, std::string& why) {
     why = "the scene rendered no frames";
     return GrabStatus::End;
   }
-  if (start_ == 0) start_ = steadyNow();
+  if (start_ == 0) start_ = steadySeconds();
   const double due = start_ + static_cast<double>(next_) * period_s_;
-  const double deadline = steadyNow() + timeout_s;
-  while (steadyNow() < due) {
-    if (interrupted_.exchange(false) || steadyNow() >= deadline) return GrabStatus::Timeout;
-    std::this_thread::sleep_for(std::chrono::duration<double>(std::min(0.002, due - steadyNow())));
+  const double deadline = steadySeconds() + timeout_s;
+  while (steadySeconds() < due) {
+    if (interrupted_.exchange(false) || steadySeconds() >= deadline) return GrabStatus::Timeout;
+    std::this_thread::sleep_for(std::chrono::duration<double>(std::min(0.002, due - steadySeconds())));
   }
   // Behind schedule (a slow consumer does not slow a camera): skip to now.
-  const uint64_t now_index = static_cast<uint64_t>((steadyNow() - start_) / period_s_);
+  const uint64_t now_index = static_cast<uint64_t>((steadySeconds() - start_) / period_s_);
   if (now_index > next_ + 1) {
     counters_.lost_frames += now_index - next_;
     next_ = now_index;
   }
   frames_[next_ % frames_.size()].copyTo(f.image);
   f.format = format_;
-  f.t_arrival = unixNow();
+  f.t_arrival = unixSeconds();
   f.t_capture = f.t_arrival;
   f.t_capture_camera = static_cast<double>(next_) * period_s_;
   f.index = static_cast<uint32_t>(next_);

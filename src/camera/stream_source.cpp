@@ -1,5 +1,6 @@
 #include "camera/stream_source.h"
 
+
 #include <fcntl.h>
 #include <linux/videodev2.h>
 #include <spdlog/spdlog.h>
@@ -17,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "camera/v4l2_list.h"
+#include "core/clock.h"
 #include "core/error.h"
 
 namespace dv {
@@ -26,12 +28,6 @@ constexpr int kOpenTimeout_ms = 5000;     // FFmpeg: connecting to a stream
 constexpr int kReadTimeout_ms = 2000;     // FFmpeg: a read that gets no data ends the stream
 constexpr double kMaxCaptureAge_s = 1.0;  // a mapped V4L2 time stamp older than this is not trusted
 
-double steadySeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-double unixSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
 std::string numberText(double v) {

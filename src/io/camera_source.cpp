@@ -1,21 +1,15 @@
 #include "io/camera_source.h"
 
+
 #include <algorithm>
 #include <chrono>
 #include <thread>
 
+#include "core/clock.h"
 #include "core/error.h"
 
 namespace dv {
 
-namespace {
-double steadySeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-double unixSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-}  // namespace
 
 CameraSetting parseCameraSetting(const std::string& item, const std::string& origin) {
   const size_t eq = item.find('=');

@@ -3,15 +3,11 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/clock.h"
+
 namespace dv {
 
 namespace {
-double unixNow() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-double steadyNow() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 std::string seconds(double s) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f s", s);
@@ -74,7 +70,7 @@ void LiveCamera::captureLoop() {
   Frame frame;
   std::string why;
   const bool live = source_->live();
-  double last_frame = steadyNow();
+  double last_frame = steadySeconds();
   double lost_since = 0;        // steady s when the camera was lost or went silent; 0: fine
   double fps_estimate = 0;      // frames per second before the gap
   double last_t_capture = 0;
@@ -82,7 +78,7 @@ void LiveCamera::captureLoop() {
   double skip_report_at = 0;
   while (!stop_) {
     const GrabStatus status = source_->grab(frame, options_.grab_timeout_s, why);
-    const double now = steadyNow();
+    const double now = steadySeconds();
     switch (status) {
       case GrabStatus::Frame: {
         if (last_t_capture > 0 && frame.t_capture > last_t_capture) {
@@ -115,7 +111,7 @@ void LiveCamera::captureLoop() {
           std::lock_guard<std::mutex> lock(mutex_);
           frames_in = ++counters_.frames_in;
           if (dropped) ++counters_.dropped;
-          counters_.last_frame_unix = unixNow();
+          counters_.last_frame_unix = unixSeconds();
         }
         // The first frame builds the processor (remap tables, up to a second):
         // wait for it, so the camera's first second is not counted as drops.
@@ -158,8 +154,8 @@ void LiveCamera::captureLoop() {
                                         seconds(options_.retry_interval_s));
         std::string retry_why;
         while (!stop_) {
-          const double until = steadyNow() + options_.retry_interval_s;
-          while (!stop_ && steadyNow() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          const double until = steadySeconds() + options_.retry_interval_s;
+          while (!stop_ && steadySeconds() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
           if (stop_) break;
           if (source_->reconnect(retry_why)) {
             std::lock_guard<std::mutex> lock(mutex_);
@@ -167,7 +163,7 @@ void LiveCamera::captureLoop() {
             break;
           }
         }
-        last_frame = steadyNow();  // the stall clock restarts after a reconnect
+        last_frame = steadySeconds();  // the stall clock restarts after a reconnect
         break;
       }
       case GrabStatus::End:
@@ -187,7 +183,7 @@ void LiveCamera::processLoop() {
       if (slot_.closed()) break;
       continue;
     }
-    process_(frame, unixNow());
+    process_(frame, unixSeconds());
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.processed;
   }
