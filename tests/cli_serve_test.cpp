@@ -218,5 +218,43 @@ TEST_F(ServeLive, RawFramesWrittenOnSigusr1ReplayToTheSameDetections) {
   EXPECT_GE(frames, 15);  // half a second at 60 fps, less what a loaded machine dropped
 }
 
+// One camera that cannot start does not stop the others; with
+// `geometry: {source: publish}` the in-process geometry publisher sends the
+// field and the calibrations on the vision group.
+TEST_F(ServeLive, ABadCameraIsReportedAndTheOthersRunWithTheGeometryPublished) {
+  std::string out;
+  ASSERT_EQ(runCli("synth " + dir_.file("scene.yaml") + " --out " + dir_.file("scene_out"), out), 0) << out;
+  std::ostringstream cfg;
+  cfg << "cameras:\n"
+      << "  - {id: 0, source: \"synthetic://" << dir_.file("scene.yaml") << "/0\", threads: 1}\n"
+      << "  - {id: 1, source: " << dir_.file("no_such_folder") << "}\n"
+      << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port_ << ", interface: 127.0.0.1}\n"
+      << "  geometry: {source: publish, file: " << dir_.file("scene_out/geometry.json") << "}\n"
+      << "  referee: {enabled: false}\n"
+      << "status_interval: 0\n";
+  std::ofstream(config_) << cfg.str();
+  MulticastReceiver rx("224.5.23.2", static_cast<uint16_t>(vision_port_), "127.0.0.1");
+  start();
+  bool geometry = false, detection = false;
+  std::string payload;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < until && !(geometry && detection)) {
+    if (!rx.receive(0.5, payload)) continue;
+    ssl::SSL_WrapperPacket p;
+    if (!p.ParseFromString(payload)) continue;
+    if (p.has_geometry() && p.geometry().calib_size() >= 1) geometry = true;
+    if (p.has_detection() && p.detection().camera_id() == 0) detection = true;
+  }
+  EXPECT_TRUE(geometry);
+  EXPECT_TRUE(detection);
+  ::kill(pid_, SIGTERM);
+  EXPECT_EQ(waitExit(pid_), 0);
+  pid_ = -1;
+  const std::string log = readAll(dir_.file("serve.log"));
+  EXPECT_NE(log.find("camera 1 (" + config_ + ":"), std::string::npos) << log;  // names the file and line
+  EXPECT_NE(log.find("not started"), std::string::npos) << log;
+  EXPECT_NE(log.find("running 1 camera(s)"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace dv
