@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   add(addEvalCommand);
   add(addBenchCommand);
   add(addGeometryCommand);
+  add(addCamerasCommand);
 
   try {
     root.parse(argc, argv);
