@@ -14,6 +14,7 @@
 
 #include "camera/camera_list.h"
 #include "camera/genicam_source.h"
+#include "camera/gvcp_probe.h"
 #include "camera/open_camera.h"
 #include "core/error.h"
 #include "fake_gige_camera.h"
@@ -269,6 +270,15 @@ TEST(GenicamCameraTest, InterruptUnblocksAGrab) {
   EXPECT_EQ(waiting.get(), GrabStatus::Timeout) << "interrupt() ends the wait before the next frame";
 }
 
+TEST(GenicamCameraTest, GvcpProbeSeesWhetherTheCameraAnswers) {
+  FakeGigeCamera cam(uniqueSerial("ping"));
+  REQUIRE_FAKE(cam);
+  EXPECT_TRUE(gvcpCameraAnswers("127.0.0.1", 1.0, 3));
+  cam.stop();
+  EXPECT_FALSE(gvcpCameraAnswers("127.0.0.1", 0.2, 2));
+  EXPECT_FALSE(gvcpCameraAnswers("not an address"));
+}
+
 TEST(GenicamCameraTest, CameraGoneIsLostAndReconnectResumesWithTheSameSettings) {
   FakeGigeCamera cam(uniqueSerial("lost"));
   REQUIRE_FAKE(cam);
@@ -285,6 +295,7 @@ TEST(GenicamCameraTest, CameraGoneIsLostAndReconnectResumesWithTheSameSettings) 
     s = src.grab(f, 0.5, why);
   ASSERT_EQ(s, GrabStatus::Lost) << why;
   EXPECT_NE(why.find("genicam://" + cam.deviceId()), std::string::npos) << why;
+  EXPECT_NE(why.find("does not answer"), std::string::npos) << why;
   EXPECT_EQ(src.grab(f, 0.1, why), GrabStatus::Lost) << "stays lost until reconnect";
   EXPECT_FALSE(src.reconnect(why)) << "the camera is still gone";
   EXPECT_NE(why.find("still gone"), std::string::npos) << why;

@@ -16,6 +16,7 @@
 #include "camera/frame_id_gap.h"
 #include "camera/genicam_features.h"
 #include "camera/genicam_pixels.h"
+#include "camera/gvcp_probe.h"
 #include "camera/receive_buffer.h"
 #include "core/error.h"
 
@@ -52,9 +53,6 @@ const char* bufferStatusText(ArvBufferStatus s) {
 // Heartbeat thread of the device: the camera says we no longer control it.
 void onControlLost(ArvDevice*, gpointer flag) { static_cast<std::atomic<bool>*>(flag)->store(true); }
 
-// GigE Vision bootstrap register: control channel privilege (bits 0, 1).
-constexpr guint64 kGvControlPrivilege = 0x0a00;
-
 std::atomic<bool> g_rmem_warned{false};  // the rmem_max cap is said once per process
 
 }  // namespace
@@ -69,6 +67,7 @@ struct GenicamSource::Impl {
   ArvStream* stream = nullptr;
   gulong control_lost_handler = 0;
   bool gige = false;
+  std::string gige_ip;  // the camera's address, for quick probes
   bool streaming = false;
 
   bool lost = false;
@@ -109,6 +108,15 @@ void GenicamSource::Impl::open() {
   if (!camera) throw InputError(spec, "cannot open camera " + device_id + ": " + takeMessage(error));
   gige = arv_camera_is_gv_device(camera);
   ArvDevice* dev = device();
+  gige_ip.clear();
+  if (gige) {
+    auto* address = arv_gv_device_get_device_address(ARV_GV_DEVICE(dev));
+    if (address && G_IS_INET_SOCKET_ADDRESS(address)) {
+      gchar* ip = g_inet_address_to_string(g_inet_socket_address_get_address(G_INET_SOCKET_ADDRESS(address)));
+      gige_ip = ip ? ip : "";
+      g_free(ip);
+    }
+  }
   arv_device_set_access_check_policy(dev, ARV_ACCESS_CHECK_POLICY_ENABLE);
   control_lost = false;
   control_lost_handler = g_signal_connect(dev, "control-lost", G_CALLBACK(onControlLost), &control_lost);
@@ -280,17 +288,17 @@ GrabStatus GenicamSource::Impl::markLost(std::string reason, std::string& why) {
   return GrabStatus::Lost;
 }
 
-// No frame for stall_s: ask the camera (in the background, a dead GigE
-// camera takes seconds to time out) whether it still answers and whether we
-// still control it.
+// No frame for stall_s: ask the camera in the background whether it still
+// answers (losing control is reported by Aravis's heartbeat instead).
 bool GenicamSource::Impl::stalled(std::string& why) {
   const double now = steadySeconds();
   if (probe.valid()) {
     if (probe.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
     const bool answers = probe.get();
     if (!answers) {
-      markLost(camera_text + " does not answer (no frame for " + std::to_string(int(now - last_activity)) + " s)",
-               why);
+      char quiet[32];
+      std::snprintf(quiet, sizeof quiet, "%.1f", now - last_activity);
+      markLost(camera_text + " does not answer (no frame for " + quiet + " s)", why);
       return true;
     }
     last_activity = now;  // alive, only quiet (e.g. triggered)
@@ -298,11 +306,11 @@ bool GenicamSource::Impl::stalled(std::string& why) {
   }
   if (now - last_activity > options.stall_s) {
     ArvDevice* dev = device();
-    const bool gv = gige;
-    probe = std::async(std::launch::async, [dev, gv] {
-      guint32 v = 0;
-      if (!arv_device_read_register(dev, gv ? kGvControlPrivilege : 0, &v, nullptr)) return false;
-      return !gv || (v & 0x3) != 0;
+    const std::string ip = gige_ip;
+    probe = std::async(std::launch::async, [dev, ip] {
+      if (!ip.empty()) return gvcpCameraAnswers(ip);
+      guint32 v = 0;  // USB3 Vision: the bootstrap registers start at 0
+      return static_cast<bool>(arv_device_read_register(dev, 0, &v, nullptr));
     });
   }
   return false;
@@ -403,11 +411,14 @@ GrabStatus GenicamSource::grab(Frame& f, double timeout_s, std::string& why) {
 
 bool GenicamSource::reconnect(std::string& why) {
   Impl& m = *impl_;
-  m.close(!m.lost);
-  if (!genicamCameraPresent(m.device_id)) {
-    why = m.spec + ": camera " + m.device_id + " is still gone (not found by discovery)";
+  // Closing a device that does not answer blocks for seconds (Aravis says
+  // goodbye to it), so the old one is closed only once the camera is back.
+  const bool back = (!m.gige_ip.empty() && gvcpCameraAnswers(m.gige_ip)) || genicamCameraPresent(m.device_id);
+  if (!back) {
+    why = m.spec + ": camera " + m.device_id + " is still gone (no answer, not found by discovery)";
     return false;
   }
+  m.close(true);
   try {
     m.open();
     m.applyList(m.settings);

@@ -21,7 +21,7 @@ namespace dv {
 struct GenicamOptions {
   double max_fps = 75;   // start-up frame rate: the camera's maximum, capped here
   int buffers = 8;       // stream buffers allocated once per stream
-  double stall_s = 1.0;  // no frame this long: ask the camera whether it still answers
+  double stall_s = 0.5;  // no frame this long: ask the camera whether it still answers
 };
 
 class GenicamSource : public CameraSource {
