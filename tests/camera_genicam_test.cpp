@@ -18,6 +18,7 @@
 #include "camera/open_camera.h"
 #include "core/error.h"
 #include "fake_gige_camera.h"
+#include "temp_dir.h"
 
 namespace dv {
 namespace {
@@ -109,6 +110,40 @@ TEST(GenicamCameraTest, Rgb8BecomesBgr) {
     test::fakePattern(rgb.data(), rgb.size(), test::fakePatternSeq(first));
     for (size_t i = 0; i < rgb.size(); i += 3)
       ASSERT_TRUE(bgr[i] == rgb[i + 2] && bgr[i + 1] == rgb[i + 1] && bgr[i + 2] == rgb[i]) << "pixel " << i / 3;
+  }
+}
+
+TEST(GenicamCameraTest, TwelveBitPackedBayerIsReducedToItsHighEightBits) {
+  TempDir dir("dv_genicam_xml");
+  const std::string xml = dir.file("fake_12bit.xml");
+  ASSERT_TRUE(test::writeFakeGenicamWithFormats(xml, {{"BayerRG12Packed", 0x010c002b}}));
+  FakeGigeCamera cam(uniqueSerial("p12"), 2448, 2048, false, xml);
+  REQUIRE_FAKE(cam);
+  GenicamSource src(cam.deviceId());
+  src.applySettings({{"Width", "640"}, {"Height", "480"}, {"PixelFormat", "BayerRG12Packed"}});
+  const auto frames = grabFrames(src, 5);
+  ASSERT_EQ(frames.size(), 5u);
+  const size_t pixels = 640 * 480;
+  std::vector<uint8_t> raw(pixels * 3 / 2);
+  for (const Frame& f : frames) {
+    ASSERT_EQ(f.format, PixelFormat::BayerRggb8);
+    ASSERT_EQ(f.image.type(), CV_8UC1);
+    // Of the seq in raw bytes 0..3, bytes 0, 2, 3 survive the reduction
+    // (pixels 0, 1, 2 are raw bytes 0, 2, 3): find the one byte missing.
+    const uint8_t* out = f.image.ptr<uint8_t>();
+    uint32_t seq = 0;
+    bool found = false;
+    for (uint32_t k = 0; k < 256 && !found; ++k) {
+      seq = out[0] | k << 8 | uint32_t(out[1]) << 16 | uint32_t(out[2]) << 24;
+      uint8_t prefix[48];
+      test::fakePattern(prefix, sizeof prefix, seq);
+      found = true;
+      for (size_t i = 0; i < 32 && found; ++i) found = out[i] == prefix[(i / 2) * 3 + (i % 2) * 2];
+    }
+    ASSERT_TRUE(found) << "no camera frame matches " << f.name;
+    test::fakePattern(raw.data(), raw.size(), seq);
+    for (size_t i = 0; i < pixels; ++i)  // GigE packing: the high 8 bits are bytes 0 and 2 of each triple
+      ASSERT_EQ(out[i], raw[(i / 2) * 3 + (i % 2) * 2]) << "pixel " << i << " of " << f.name;
   }
 }
 

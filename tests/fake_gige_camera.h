@@ -8,15 +8,21 @@
 // machine-wide lock (a file lock in the temp directory) while it lives, and
 // tests in parallel processes take turns.
 #include <arv.h>
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dv::test {
 
@@ -37,10 +43,38 @@ inline void fakePattern(uint8_t* dst, size_t n, uint32_t seq) {
 }
 inline uint32_t fakePatternSeq(const uint8_t* p) { return p[0] | p[1] << 8 | p[2] << 16 | uint32_t(p[3]) << 24; }
 
+// Aravis's fake camera description with more PixelFormat entries (the
+// GenICam value and name of each), written to `path`; for formats Aravis's
+// own description does not offer.
+inline bool writeFakeGenicamWithFormats(const std::string& path,
+                                        const std::vector<std::pair<std::string, uint32_t>>& formats) {
+  ArvFakeCamera* reference = arv_fake_camera_new("xml");
+  size_t size = 0;
+  const char* xml = arv_fake_camera_get_genicam_xml(reference, &size);
+  std::string text(xml ? xml : "", xml ? size : 0);
+  g_object_unref(reference);
+  const size_t at = text.find("<pValue>PixelFormatRegister</pValue>");
+  if (at == std::string::npos) return false;
+  std::string entries;
+  for (const auto& [name, value] : formats)
+    entries += "<EnumEntry Name=\"" + name + "\" NameSpace=\"Standard\"><Value>" + std::to_string(value) +
+               "</Value></EnumEntry>\n";
+  text.insert(at, entries);
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return false;
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  return std::fclose(f) == 0 && ok;
+}
+
 class FakeGigeCamera {
  public:
-  explicit FakeGigeCamera(std::string serial, int sensor_width = 2448, int sensor_height = 2048)
-      : serial_(std::move(serial)), sensor_width_(sensor_width), sensor_height_(sensor_height) {
+  // cheap_fill: every frame is the same pattern but for its seq bytes (a
+  // memcpy, for benchmarks at full rate); else each frame is its own.
+  // genicam_file: another description of the camera ("" = Aravis's own).
+  explicit FakeGigeCamera(std::string serial, int sensor_width = 2448, int sensor_height = 2048,
+                          bool cheap_fill = false, std::string genicam_file = "")
+      : serial_(std::move(serial)), sensor_width_(sensor_width), sensor_height_(sensor_height),
+        cheap_fill_(cheap_fill), genicam_file_(std::move(genicam_file)) {
     const auto lock_path = std::filesystem::temp_directory_path() / "dotvision_fake_gige_camera.lock";
     lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT, 0666);
     if (lock_fd_ >= 0) ::flock(lock_fd_, LOCK_EX);
@@ -57,7 +91,12 @@ class FakeGigeCamera {
   // camera powered on / unplugged.
   void start() {
     if (camera_) return;
-    camera_ = arv_gv_fake_camera_new("127.0.0.1", serial_.c_str());
+    // Aravis's fake does not notice when its control socket cannot bind
+    // (and would then answer discovery while another program answers
+    // control), so the port is checked first.
+    if (!gvcpPortFree()) return;
+    camera_ = arv_gv_fake_camera_new_full("127.0.0.1", serial_.c_str(),
+                                          genicam_file_.empty() ? nullptr : genicam_file_.c_str());
     if (!arv_gv_fake_camera_is_running(camera_)) return;
     ArvFakeCamera* fake = arv_gv_fake_camera_get_fake_camera(camera_);
     // The sensor is 2048x2048 unless these registers are written.
@@ -73,6 +112,18 @@ class FakeGigeCamera {
   const std::string& serial() const { return serial_; }
   std::string deviceId() const { return "Aravis-Fake-" + serial_; }
   uint32_t framesWritten() const { return seq_.load(); }
+  static bool gvcpPortFree() {
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    if (fd < 0) return false;
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(3956);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    const bool ok = ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+    ::close(fd);
+    return ok;
+  }
+
   // The camera's registers, read and written in memory (not over the network).
   uint32_t reg(uint32_t address) const {
     guint32 v = 0;
@@ -90,13 +141,23 @@ class FakeGigeCamera {
   static void fill(ArvBuffer* buffer, void* self_ptr, guint32, guint32, ArvPixelFormat format) {
     auto* self = static_cast<FakeGigeCamera*>(self_ptr);
     const size_t n = static_cast<size_t>(arv_buffer_get_image_width(buffer)) * arv_buffer_get_image_height(buffer) *
-                     (ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format) / 8);
+                     ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format) / 8;
     auto* data = static_cast<uint8_t*>(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)));
-    fakePattern(data, n, ++self->seq_);
+    const uint32_t seq = ++self->seq_;
+    if (!self->cheap_fill_) return fakePattern(data, n, seq);
+    if (self->fixed_.size() != n) {
+      self->fixed_.resize(n);
+      fakePattern(self->fixed_.data(), n, 0);
+    }
+    std::memcpy(data, self->fixed_.data(), n);
+    for (size_t i = 0; i < 4 && i < n; ++i) data[i] = static_cast<uint8_t>(seq >> (8 * i));
   }
 
   std::string serial_;
   int sensor_width_, sensor_height_;
+  bool cheap_fill_;
+  std::string genicam_file_;
+  std::vector<uint8_t> fixed_;  // the cheap fill's frame (fake camera thread only)
   int lock_fd_ = -1;
   ArvGvFakeCamera* camera_ = nullptr;
   std::atomic<uint32_t> seq_{0};

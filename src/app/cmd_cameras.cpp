@@ -2,7 +2,7 @@
 // USB3 Vision) with the id to give as --source genicam://ID, their
 // interface, current pixel format and size; then V4L2 devices.
 #include <cstdio>
-#include <memory>
+#include <vector>
 
 #include "app/commands.h"
 #include "camera/camera_list.h"
@@ -13,7 +13,7 @@ namespace {
 
 void printGenicam(const std::vector<GenicamCameraInfo>& cams) {
   if (cams.empty()) {
-    std::printf("GenICam cameras: none. %s.\n", genicamEmptyListHint().c_str());
+    std::printf("GenICam cameras: none (%s).\n", genicamEmptyListHint().c_str());
     return;
   }
   std::printf("GenICam cameras (%zu):\n", cams.size());

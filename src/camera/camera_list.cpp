@@ -71,10 +71,10 @@ std::vector<GenicamCameraInfo> listGenicamCameras(bool details) {
 }
 
 std::string genicamEmptyListHint() {
-  return "no GenICam camera answered. Is one connected and powered? USB3 Vision needs read/write "
-         "permission on its USB device (udev rule or group); GigE Vision discovery needs the camera on "
-         "a directly reachable subnet and a firewall that lets UDP port 3956 through (replies come "
-         "from the camera's address)";
+  return "no GenICam camera answered: is one connected and powered? A USB3 Vision camera needs read/write "
+         "permission on its USB device (a udev rule or group); GigE Vision discovery needs the camera on a "
+         "directly reachable subnet and a firewall that lets UDP port 3956 through (the replies come from "
+         "the camera's address)";
 }
 
 std::string resolveGenicamId(const std::string& wanted, const std::string& source) {
