@@ -2,23 +2,20 @@
 
 #include <arv.h>
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <vector>
 
+#include "camera/aravis_error.h"
 #include "core/error.h"
 
 namespace dv {
 
 namespace {
-
-// Takes ownership of a GError and gives its message.
-std::string takeMessage(GError*& error) {
-  std::string m = error && error->message ? error->message : "unknown error";
-  g_clear_error(&error);
-  return m;
-}
 
 bool parseInt(const std::string& text, gint64& v) {
   const char* b = text.data();
@@ -129,7 +126,7 @@ std::string setGenicamFeature(ArvDevice* device, const CameraSetting& s, const s
   if (ARV_IS_GC_ENUMERATION(node)) {
     auto* e = ARV_GC_ENUMERATION(node);
     if (!arv_gc_enumeration_set_string_value(e, value.c_str(), &error) || error) {
-      const std::string why = takeMessage(error);
+      const std::string why = takeErrorMessage(error);
       fail("refused (" + why + "); the camera offers: " + joinAvailable(e));
     }
   } else if (ARV_IS_GC_BOOLEAN(node)) {
@@ -160,11 +157,11 @@ std::string setGenicamFeature(ArvDevice* device, const CameraSetting& s, const s
   } else {
     fail("feature '" + name + "' is of a kind that cannot be set from text");
   }
-  if (error) fail("refused by the camera: " + takeMessage(error));
+  if (error) fail("refused by the camera: " + takeErrorMessage(error));
   if (ARV_IS_GC_COMMAND(node)) return name + " executed";
 
   const char* back = arv_gc_feature_node_get_value_as_string(feature, &error);
-  if (error || !back) fail("set, but it cannot be read back: " + takeMessage(error));
+  if (error || !back) fail("set, but it cannot be read back: " + takeErrorMessage(error));
   std::string line = name + " = " + back + unitOf(node);
   double got = 0;
   if (!std::isnan(asked_number) && parseFloat(back, got) &&

@@ -14,10 +14,12 @@
 #include "camera/camera_list.h"
 #include "camera/clock_offset.h"
 #include "camera/frame_id_gap.h"
+#include "camera/genicam_defaults.h"
 #include "camera/genicam_features.h"
 #include "camera/genicam_pixels.h"
 #include "camera/gvcp_probe.h"
 #include "camera/receive_buffer.h"
+#include "camera/aravis_error.h"
 #include "core/error.h"
 
 namespace dv {
@@ -29,12 +31,6 @@ double steadySeconds() {
 }
 double unixSeconds() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-
-std::string takeMessage(GError*& error) {
-  std::string m = error && error->message ? error->message : "unknown error";
-  g_clear_error(&error);
-  return m;
 }
 
 const char* bufferStatusText(ArvBufferStatus s) {
@@ -90,9 +86,8 @@ struct GenicamSource::Impl {
 
   void open();
   void applyDefaults();
-  void choosePixelFormat();
-  void applyFrameRateDefault();
   std::vector<std::string> applyList(const std::vector<CameraSetting>& list);
+  void updateFormatText();
   bool startStream(std::string& reason);  // reason without the spec
   void stopStream(bool camera_answers);
   void close(bool camera_answers);
@@ -105,7 +100,7 @@ struct GenicamSource::Impl {
 void GenicamSource::Impl::open() {
   GError* error = nullptr;
   camera = arv_camera_new(device_id.c_str(), &error);
-  if (!camera) throw InputError(spec, "cannot open camera " + device_id + ": " + takeMessage(error));
+  if (!camera) throw InputError(spec, "cannot open camera " + device_id + ": " + takeErrorMessage(error));
   gige = arv_camera_is_gv_device(camera);
   ArvDevice* dev = device();
   gige_ip.clear();
@@ -132,72 +127,11 @@ void GenicamSource::Impl::open() {
 }
 
 void GenicamSource::Impl::applyDefaults() {
-  GError* error = nullptr;
-  std::vector<std::string> notes;
-  if (arv_camera_is_feature_available(camera, "AcquisitionMode", nullptr)) {
-    arv_camera_set_acquisition_mode(camera, ARV_ACQUISITION_MODE_CONTINUOUS, &error);
-    notes.push_back(error ? "AcquisitionMode not set: " + takeMessage(error) : "continuous acquisition");
-  }
-  // Auto exposure and auto gain make the colors flicker from frame to frame.
-  if (arv_camera_is_exposure_auto_available(camera, nullptr)) {
-    arv_camera_set_exposure_time_auto(camera, ARV_AUTO_OFF, &error);
-    notes.push_back(error ? "ExposureAuto not set: " + takeMessage(error) : "ExposureAuto Off");
-  }
-  if (arv_camera_is_gain_auto_available(camera, nullptr)) {
-    arv_camera_set_gain_auto(camera, ARV_AUTO_OFF, &error);
-    notes.push_back(error ? "GainAuto not set: " + takeMessage(error) : "GainAuto Off");
-  }
-  choosePixelFormat();
-  applyFrameRateDefault();
-  if (gige) {
-    const guint size = arv_camera_gv_auto_packet_size(camera, &error);
-    notes.push_back(error ? "packet size not negotiated: " + takeMessage(error)
-                          : "packet size " + std::to_string(size));
-  }
+  const auto notes = applyGenicamDefaults(camera, options.max_fps, spec, camera_text);
   std::string joined;
   for (const auto& n : notes) joined += (joined.empty() ? "" : ", ") + n;
   spdlog::info("{}: {} start-up defaults: {}", spec, camera_text, joined);
-}
-
-void GenicamSource::Impl::choosePixelFormat() {
-  GError* error = nullptr;
-  const ArvPixelFormat current = arv_camera_get_pixel_format(camera, &error);
-  if (error) throw InputError(spec, camera_text + ": cannot read PixelFormat: " + takeMessage(error));
-  if (genicamPixelLayout(current)) return;
-  const char* current_name = arv_camera_get_pixel_format_as_string(camera, nullptr);
-  guint n = 0, n_names = 0;
-  gint64* formats = arv_camera_dup_available_pixel_formats(camera, &n, nullptr);
-  const char** names = arv_camera_dup_available_pixel_formats_as_strings(camera, &n_names, nullptr);
-  int best = -1, best_rank = 0;
-  std::string offered;
-  for (guint i = 0; formats && i < n; ++i) {
-    const int rank = genicamFormatPreference(static_cast<uint32_t>(formats[i]));
-    if (rank > best_rank) best = static_cast<int>(i), best_rank = rank;
-    if (names && i < n_names) offered += (offered.empty() ? "" : ", ") + std::string(names[i]);
-  }
-  const ArvPixelFormat chosen = best >= 0 ? static_cast<ArvPixelFormat>(formats[best]) : 0;
-  g_free(formats);
-  g_free(names);
-  const std::string reason = unusablePixelFormatReason(current, current_name ? current_name : "?");
-  if (best < 0)
-    throw InputError(spec, camera_text + ": " + reason + "; the camera offers only: " + offered);
-  arv_camera_set_pixel_format(camera, chosen, &error);
-  if (error) throw InputError(spec, camera_text + ": cannot switch PixelFormat: " + takeMessage(error));
-  const char* name = arv_camera_get_pixel_format_as_string(camera, nullptr);
-  spdlog::info("{}: the camera was in {}; using {}", spec, current_name ? current_name : "?", name ? name : "?");
-}
-
-void GenicamSource::Impl::applyFrameRateDefault() {
-  GError* error = nullptr;
-  if (!arv_camera_is_frame_rate_available(camera, nullptr)) return;
-  double lo = 0, hi = 0;
-  arv_camera_get_frame_rate_bounds(camera, &lo, &hi, &error);
-  if (error || hi <= 0) {
-    g_clear_error(&error);
-    return;
-  }
-  arv_camera_set_frame_rate(camera, std::clamp(options.max_fps, lo, hi), &error);
-  if (error) spdlog::warn("{}: frame rate not set: {}", spec, takeMessage(error));
+  updateFormatText();
 }
 
 std::vector<std::string> GenicamSource::Impl::applyList(const std::vector<CameraSetting>& list) {
@@ -214,7 +148,8 @@ std::vector<std::string> GenicamSource::Impl::applyList(const std::vector<Camera
     }
   }
   // A new size or format may change the fastest rate the camera can run.
-  if (!list.empty() && !frame_rate_given) applyFrameRateDefault();
+  if (!list.empty() && !frame_rate_given) applyGenicamFrameRateDefault(camera, options.max_fps, spec);
+  updateFormatText();
   return lines;
 }
 
@@ -229,12 +164,12 @@ bool GenicamSource::Impl::startStream(std::string& reason) {
   }
   stream = arv_camera_create_stream(camera, nullptr, nullptr, &error);
   if (!stream) {
-    reason = "cannot open the stream of " + camera_text + ": " + takeMessage(error);
+    reason = "cannot open the stream of " + camera_text + ": " + takeErrorMessage(error);
     return false;
   }
   const guint payload = arv_camera_get_payload(camera, &error);
   if (error || payload == 0) {
-    reason = "cannot read the payload size of " + camera_text + ": " + takeMessage(error);
+    reason = "cannot read the payload size of " + camera_text + ": " + takeErrorMessage(error);
     stopStream(true);
     return false;
   }
@@ -248,20 +183,21 @@ bool GenicamSource::Impl::startStream(std::string& reason) {
   for (int i = 0; i < std::max(options.buffers, 2); ++i) arv_stream_push_buffer(stream, arv_buffer_new(payload, nullptr));
   arv_camera_start_acquisition(camera, &error);
   if (error) {
-    reason = camera_text + " does not start acquisition: " + takeMessage(error);
+    reason = camera_text + " does not start acquisition: " + takeErrorMessage(error);
     stopStream(true);
     return false;
-  }
-  gint x = 0, y = 0, w = 0, h = 0;
-  arv_camera_get_region(camera, &x, &y, &w, &h, nullptr);
-  const char* format = arv_camera_get_pixel_format_as_string(camera, nullptr);
-  {
-    std::lock_guard<std::mutex> lock(describe_mutex);
-    format_text = std::string(format ? format : "?") + " " + std::to_string(w) + "x" + std::to_string(h);
   }
   streaming = true;
   last_activity = steadySeconds();
   return true;
+}
+
+void GenicamSource::Impl::updateFormatText() {
+  gint x = 0, y = 0, w = 0, h = 0;
+  arv_camera_get_region(camera, &x, &y, &w, &h, nullptr);
+  const char* format = arv_camera_get_pixel_format_as_string(camera, nullptr);
+  std::lock_guard<std::mutex> lock(describe_mutex);
+  format_text = std::string(format ? format : "?") + " " + std::to_string(w) + "x" + std::to_string(h);
 }
 
 void GenicamSource::Impl::stopStream(bool camera_answers) {
