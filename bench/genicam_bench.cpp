@@ -75,7 +75,9 @@ void BM_GenicamStream2448At60(benchmark::State& state) {
     dv::Frame f;
     std::string why;
     // Warm-up: the stream is open and a first frame has arrived.
-    while (src.grab(f, 2.0, why) != dv::GrabStatus::Frame) {
+    for (dv::GrabStatus s = dv::GrabStatus::Timeout; s != dv::GrabStatus::Frame;) {
+      s = src.grab(f, 2.0, why);
+      if (s == dv::GrabStatus::Lost) return state.SkipWithError(why.c_str());
     }
     const dv::SourceCounters before = src.counters();
     const double stream_cpu0 = threadCpuSeconds("arv_gv_stream");
