@@ -17,6 +17,7 @@ CommandFn addEvalCommand(CLI::App& root);
 CommandFn addBenchCommand(CLI::App& root);
 CommandFn addGeometryCommand(CLI::App& root);
 CommandFn addServeCommand(CLI::App& root);
+CommandFn addCamerasCommand(CLI::App& root);
 
 // Exit codes shared by all subcommands.
 constexpr int kExitOk = 0;

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add(addBenchCommand);
   add(addGeometryCommand);
   add(addServeCommand);
+  add(addCamerasCommand);
 
   try {
     root.parse(argc, argv);

@@ -1,5 +1,6 @@
 #include "camera/open_camera.h"
 
+#include "camera/genicam_source.h"
 #include "camera/stream_source.h"
 #include "core/error.h"
 
@@ -17,10 +18,10 @@ bool isCameraSpec(const std::string& spec) {
 std::unique_ptr<CameraSource> openCameraSource(const std::string& spec, const CameraSourceOptions& options,
                                                std::vector<std::string>* settings_report) {
   std::unique_ptr<CameraSource> source;
-  if (isStreamSpec(spec)) {
+  if (startsWith(spec, "genicam://")) {
+    source = std::make_unique<GenicamSource>(spec.substr(10));
+  } else if (isStreamSpec(spec)) {
     source = std::make_unique<StreamSource>(spec);
-  } else if (isCameraSpec(spec)) {
-    throw InputError(spec, "live cameras are not built yet");
   } else {
     source = std::make_unique<FileCameraSource>(openFrameSource(spec, options.files), options.realtime);
   }
