@@ -40,7 +40,7 @@ bool findScalar(const std::string& text, const std::string& key, size_t& begin, 
     if (!next.IsDefined()) return false;
     node.reset(next);
   }
-  if (!node.IsScalar()) return false;
+  if (!node.IsScalar() && !node.IsNull()) return false;  // `null` and `~` are written values too
   const int pos = node.Mark().pos;
   if (pos < 0 || size_t(pos) >= text.size()) return false;
   begin = size_t(pos);
@@ -70,7 +70,7 @@ bool findScalar(const std::string& text, const std::string& key, size_t& begin, 
   while (end > begin && (text[end - 1] == ' ' || text[end - 1] == '\t')) --end;
   // A sanity check: the span read back is the value yaml-cpp read.
   const YAML::Node back = load(text.substr(begin, end - begin), source);
-  return end > begin && back.IsScalar() && back.Scalar() == node.Scalar();
+  return end > begin && back.Type() == node.Type() && (!node.IsScalar() || back.Scalar() == node.Scalar());
 }
 
 }  // namespace
