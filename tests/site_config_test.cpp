@@ -400,6 +400,9 @@ robot_heights: {blue: 150, teams: {ER-Force: 145}}
   EXPECT_NE(text.find("robot heights: default 140 mm; yellow by team; blue 150 mm; teams: er-force 145 mm\n"),
             std::string::npos)
       << text;
+  EXPECT_NE(text.find("console: 127.0.0.1:8080 (token random, printed at start)\n"), std::string::npos) << text;
+  const SiteConfig off = parseSiteConfig("cameras: [{id: 0, source: a.png}]\nconsole: {http: \"\"}\n", "site.yaml");
+  EXPECT_NE(describeSiteConfig(off).find("console: off\n"), std::string::npos);
 }
 
 }  // namespace
