@@ -14,6 +14,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
   libgtest-dev libgmock-dev libbenchmark-dev
   libaravis-dev libusb-1.0-0-dev aravis-tools ffmpeg  # aravis-0.8.pc requires libusb-1.0.pc
+  chromium chromium-driver  # the console's browser tests (headless)
 )
 
 missing=()

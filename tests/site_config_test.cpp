@@ -85,6 +85,9 @@ TEST(SiteConfigFiles, ExampleParsesToTheDocumentedDefaults) {
   EXPECT_EQ(c.record.raw_seconds, r.raw_seconds);
   EXPECT_EQ(c.record.on_health_change, r.on_health_change);
   EXPECT_EQ(c.record.ssl_log, r.ssl_log);
+  EXPECT_EQ(c.console.http, SiteConsole().http);
+  EXPECT_EQ(c.console.http, "127.0.0.1:8080");  // loopback only unless told
+  EXPECT_EQ(c.console.token_file, SiteConsole().token_file);
   EXPECT_EQ(c.status_interval, SiteConfig().status_interval);
 }
 
@@ -220,7 +223,7 @@ TEST(SiteConfigErrors, UnknownKeysListTheAllowedOnesAndSuggest) {
   EXPECT_NE(what.find("allowed here: id, source, settings, bayer"), std::string::npos) << what;
   what = expectError(kOneCamera + "colour_classes: 4\n", 3, "colour_classes",
                      "unknown key (allowed at the top: cameras, network, robot_heights, detector, record, "
-                     "status_interval)");
+                     "console, status_interval)");
   EXPECT_EQ(what.find("did you mean"), std::string::npos) << what;
   expectError(kOneCamera + "Detector: {}\n", 3, "Detector", "did you mean 'detector'?");
   expectError(kOneCamera + "record: {raw_second: 3}\n", 3, "record.raw_second", "did you mean 'raw_seconds'?");
@@ -280,6 +283,27 @@ TEST(SiteConfigErrors, ChoicesAndAddresses) {
   expectError(kOneCamera + "network:\n  referee: {group: field-pc}\n", 4, "network.referee.group", "multicast");
   expectError(kOneCamera + "network:\n  vision: {interface: eth0}\n", 4, "network.vision.interface",
               "expected the IPv4 address of a local interface");
+}
+
+TEST(SiteConfigParse, ConsoleAddressAndTokenFile) {
+  const SiteConfig c =
+      parseSiteConfig(kOneCamera + "console: {http: \"0.0.0.0:9000\", token_file: /etc/dv/token}\n", "site.yaml");
+  EXPECT_EQ(c.console.http, "0.0.0.0:9000");
+  EXPECT_EQ(c.console.token_file, "/etc/dv/token");
+  EXPECT_EQ(parseSiteConfig(kOneCamera + "console: {http: \"\"}\n", "site.yaml").console.http, "");
+  std::string host;
+  uint16_t port = 1;
+  EXPECT_TRUE(splitListenAddress("127.0.0.1:0", host, port));
+  EXPECT_EQ(host, "127.0.0.1");
+  EXPECT_EQ(port, 0);
+  for (const char* bad : {"localhost:8080", "127.0.0.1", "127.0.0.1:", "127.0.0.1:65536", ":80", "127.0.0.1:8o"})
+    EXPECT_FALSE(splitListenAddress(bad, host, port)) << bad;
+}
+
+TEST(SiteConfigErrors, ConsoleAddress) {
+  expectError(kOneCamera + "console:\n  http: localhost:8080\n", 4, "console.http",
+              "expected IPv4ADDR:PORT (e.g. 127.0.0.1:8080), or \"\" for no console, got 'localhost:8080'");
+  expectError(kOneCamera + "console: {htp: 1}\n", 3, "console.htp", "did you mean 'http'?");
 }
 
 TEST(SiteConfigErrors, GeometryFileNeededToPublishOrRead) {
@@ -376,6 +400,9 @@ robot_heights: {blue: 150, teams: {ER-Force: 145}}
   EXPECT_NE(text.find("robot heights: default 140 mm; yellow by team; blue 150 mm; teams: er-force 145 mm\n"),
             std::string::npos)
       << text;
+  EXPECT_NE(text.find("console: 127.0.0.1:8080 (token random, printed at start)\n"), std::string::npos) << text;
+  const SiteConfig off = parseSiteConfig("cameras: [{id: 0, source: a.png}]\nconsole: {http: \"\"}\n", "site.yaml");
+  EXPECT_NE(describeSiteConfig(off).find("console: off\n"), std::string::npos);
 }
 
 }  // namespace

@@ -97,7 +97,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   outputs_.detection(packet_);
   const double arrival = frame.t_arrival > 0 ? frame.t_arrival : t_taken;
   const double t_done = unixSeconds();
-  if (hook_) hook_(frame, packet_);
+  for (const FrameHook& hook : hooks_) hook(frame, packet_);
 
   std::lock_guard<std::mutex> lock(mutex_);
   // The first frame built the processor: a start-up cost, not a latency.

@@ -26,7 +26,7 @@ namespace dv::app {
 class CameraRunner {
  public:
   using LogFn = std::function<void(const std::string&)>;
-  // A hook on the processing thread after each frame (e.g. the raw ring).
+  // A hook on the processing thread after each frame's packet went out.
   using FrameHook = std::function<void(const Frame&, const ssl::SSL_WrapperPacket&)>;
 
   CameraRunner(const CameraCalibration& calibration, const FieldModel& field, const ProcessorOptions& options,
@@ -42,7 +42,8 @@ class CameraRunner {
   CameraStatus status();
   // Applied before the next frame; invalid options are logged and ignored.
   void setDetectorOptions(const DetectorOptions& o);
-  void setFrameHook(FrameHook hook) { hook_ = std::move(hook); }
+  // Hooks run in the order added; add them before start().
+  void addFrameHook(FrameHook hook) { hooks_.push_back(std::move(hook)); }
   uint32_t cameraId() const { return calibration_.camera_id; }
   CameraSource& source() { return camera_.source(); }
   // Every frame's total latency (arrival -> sent, ms) and stage times, for
@@ -61,7 +62,7 @@ class CameraRunner {
   ProcessorOptions options_;
   PacketOutputs& outputs_;
   LogFn log_;
-  FrameHook hook_;
+  std::vector<FrameHook> hooks_;  // the raw ring, the console's feed
   std::optional<CameraProcessor> processor_;
   std::string failure_;  // the processor could not be built: why
   Detections detections_;

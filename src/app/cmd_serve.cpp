@@ -17,6 +17,8 @@
 #include <thread>
 
 #include "app/commands.h"
+#include "app/console_server.h"
+#include "app/serve_status.h"
 #include "app/signals.h"
 #include "app/site_config.h"
 #include "app/site_runtime.h"
@@ -34,6 +36,8 @@ struct ServeArgs {
   bool quiet = false;
   std::string status_file;
   std::string record_raw;
+  std::string http;  // --http; only when given (else the config's console.http)
+  bool http_given = false;
   double duration = 0;
 };
 
@@ -45,13 +49,7 @@ void logLine(const std::string& line) {
 }
 
 // Written to a temporary name and renamed, so a reader never sees half a file.
-void writeStatusFile(const std::string& path, const std::vector<CameraStatus>& cameras, const SiteRuntime& rt,
-                     const RefereeSnapshot& referee) {
-  nlohmann::json j;
-  j["config"] = rt.config().path;
-  j["teams"] = {{"yellow", referee.yellow_name}, {"blue", referee.blue_name}};
-  j["cameras"] = nlohmann::json::array();
-  for (const CameraStatus& c : cameras) j["cameras"].push_back(toJson(c));
+void writeStatusFile(const std::string& path, const nlohmann::json& j) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
@@ -86,7 +84,17 @@ int serve(const ServeArgs& a) {
       logLine(std::string("not listening to the game controller: ") + e.what());
     }
   }
+  // The console hooks into the cameras before they start.
+  std::unique_ptr<ConsoleServer> console = makeConsole(runtime, a.http_given ? &a.http : nullptr, logLine);
   runtime.start();
+  if (console) {
+    console->start();
+    if (runtime.config().console.token_file.empty())
+      logLine("console: " + console->url() + "#token=" + console->token() + " (changes need the token " +
+              console->token() + ")");
+    else
+      logLine("console: " + console->url() + " (changes need the token in " + runtime.config().console.token_file + ")");
+  }
   logLine("running " + std::to_string(runtime.cameraCount()) + " camera(s); SIGHUP reloads " + a.config);
 
   using Clock = std::chrono::steady_clock;
@@ -107,6 +115,7 @@ int serve(const ServeArgs& a) {
     }
     if (takeDumpRequest() && !runtime.dumpRaw("SIGUSR1"))
       logLine("no raw frames to write (set record.raw_dir or --record-raw) or a dump is still being written");
+    if (console) console->service(runtime);
     if (takeReloadRequest()) {
       try {
         SiteConfig next = loadSiteConfig(a.config);
@@ -120,7 +129,11 @@ int serve(const ServeArgs& a) {
     if (now >= next_second) {
       next_second += std::chrono::seconds(1);
       last = runtime.status();
-      if (!a.status_file.empty()) writeStatusFile(a.status_file, last, runtime, teams);
+      if (!a.status_file.empty() || console) {
+        const nlohmann::json status = serveStatusJson(last, runtime.config().path, teams);
+        if (!a.status_file.empty()) writeStatusFile(a.status_file, status);
+        if (console) console->setStatus(status);
+      }
       const double interval = runtime.config().status_interval;
       if (!a.quiet && interval > 0 && now >= next_table) {
         std::fprintf(stderr, "%s", statusTable(last).c_str());
@@ -129,6 +142,7 @@ int serve(const ServeArgs& a) {
     }
     if (a.duration > 0 && now - started >= std::chrono::duration<double>(a.duration)) break;
   }
+  if (console) console->stop();
   referee.reset();
   runtime.stop();
   runtime.finish();
@@ -166,6 +180,10 @@ CommandFn addServeCommand(CLI::App& root) {
   cmd->add_option("--record-raw", a->record_raw,
                   "keep the last seconds of raw frames (record.raw_seconds) and write them here on SIGUSR1 "
                   "or a change of health (overrides record.raw_dir)");
+  cmd->add_option("--http", a->http,
+                  "the console in the browser listens here, IPv4ADDR:PORT (default: the config's console.http, "
+                  "127.0.0.1:8080; \"\": no console)")
+      ->each([a](const std::string&) { a->http_given = true; });
   cmd->add_option("--duration", a->duration, "stop after this many seconds (default: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   return [a] { return serve(*a); };

@@ -41,13 +41,14 @@ class SiteReader {
       throw InputError(y_.file(), "the site config is empty: it needs at least a 'cameras' list");
     bool have_cameras = false;
     y_.forEach(root, "",
-               {"cameras", "network", "robot_heights", "detector", "record", "status_interval"},
+               {"cameras", "network", "robot_heights", "detector", "record", "console", "status_interval"},
                [&](const std::string& key, const YAML::Node& v) {
                  if (key == "cameras") have_cameras = true, cameras(v, c.cameras);
                  if (key == "network") network(v, c.network);
                  if (key == "robot_heights") heights(v, c.robot_heights);
                  if (key == "detector") detector(v, c.detector);
                  if (key == "record") record(v, c.record);
+                 if (key == "console") console(v, c.console);
                  if (key == "status_interval") c.status_interval = y_.number(v, key, 0, 3600, "s");
                });
     if (!have_cameras) y_.fail(root, "cameras", "missing or empty: the file must list at least one camera");
@@ -221,10 +222,35 @@ class SiteReader {
                });
   }
 
+  void console(const YAML::Node& n, SiteConsole& c) {
+    y_.forEach(n, "console", {"http", "token_file"}, [&](const std::string& key, const YAML::Node& v) {
+      if (key == "console.http") {
+        c.http = y_.text(v, key);
+        std::string host;
+        uint16_t port = 0;
+        if (!c.http.empty() && !splitListenAddress(c.http, host, port))
+          y_.fail(v, key, "expected IPv4ADDR:PORT (e.g. 127.0.0.1:8080), or \"\" for no console, got '" + c.http + "'");
+      }
+      if (key == "console.token_file") c.token_file = y_.text(v, key);
+    });
+  }
+
   StrictYaml y_;
 };
 
 }  // namespace
+
+bool splitListenAddress(const std::string& text, std::string& host, uint16_t& port) {
+  const size_t colon = text.rfind(':');
+  if (colon == std::string::npos || colon + 1 == text.size() || colon + 6 < text.size()) return false;
+  const std::string digits = text.substr(colon + 1);
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return false;
+  const long p = std::stol(digits);
+  if (p > 65535 || !isIpv4(text.substr(0, colon))) return false;
+  host = text.substr(0, colon);
+  port = static_cast<uint16_t>(p);
+  return true;
+}
 
 std::string teamKey(const std::string& name) {
   const size_t a = name.find_first_not_of(" \t"), b = name.find_last_not_of(" \t");

@@ -64,6 +64,14 @@ struct SiteRecord {
   std::string ssl_log;          // "": none; else every packet to this SSL log file
 };
 
+// The operator's console (a web server in `serve`): where it listens and
+// where the operator's token comes from (a file, so that the config text,
+// which the console shows, never holds the secret).
+struct SiteConsole {
+  std::string http = "127.0.0.1:8080";  // IPv4ADDR:PORT (port 0: any free port); "": no console
+  std::string token_file;               // "": a random token, printed at start
+};
+
 struct SiteConfig {
   std::string path;  // the file it came from
   std::vector<SiteCamera> cameras;
@@ -71,6 +79,7 @@ struct SiteConfig {
   SiteRobotHeights robot_heights;
   SiteDetector detector;
   SiteRecord record;
+  SiteConsole console;
   double status_interval = 5;  // s between status tables on the terminal; 0: off
 };
 
@@ -85,6 +94,9 @@ SiteConfig parseSiteConfig(const std::string& yaml_text, const std::string& name
 // (id, source, options that differ from the defaults), network, geometry,
 // referee, robot heights, recording. Each line ends with '\n'.
 std::string describeSiteConfig(const SiteConfig& config);
+
+// Splits "IPv4ADDR:PORT" (port 0..65535); false when it is not that.
+bool splitListenAddress(const std::string& text, std::string& host, uint16_t& port);
 
 // How team names are compared (the table's keys, the referee's names):
 // lower case, surrounding blanks dropped.

@@ -86,6 +86,11 @@ std::string describeSiteConfig(const SiteConfig& c) {
     s << "status: a table every " << c.status_interval << " s\n";
   else
     s << "status: no tables\n";
+  if (c.console.http.empty())
+    s << "console: off\n";
+  else
+    s << "console: " << c.console.http << " (token "
+      << (c.console.token_file.empty() ? "random, printed at start" : "from " + c.console.token_file) << ")\n";
   return s.str();
 }
 

@@ -117,7 +117,7 @@ SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config),
     config_index_.push_back(i);
     if (!config_.record.raw_dir.empty()) {
       auto ring = std::make_shared<RawRing>(config_.record.raw_seconds, kRawRingBytes);
-      runners_.back()->setFrameHook([ring, buffer = std::string()](const Frame& f, const ssl::SSL_WrapperPacket& p) mutable {
+      runners_.back()->addFrameHook([ring, buffer = std::string()](const Frame& f, const ssl::SSL_WrapperPacket& p) mutable {
         p.SerializeToString(&buffer);  // reuses the buffer's capacity
         ring->add(f, buffer);
       });

@@ -1,0 +1,48 @@
+#pragma once
+// What the console sees of one camera: its newest detection frame and, on
+// request, a copy of its newest frame. onFrame() runs on the camera's
+// processing thread (as CameraRunner's frame hook) and costs two relaxed
+// atomic loads unless someone asked: the detection frame is copied only
+// while the console polls detections (3 s after its last poll), the image
+// only while a snapshot request waits. Everything else (demosaicing,
+// scaling, encoding, JSON) happens on the console's threads.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+
+#include "dotvision/ssl_wrapper.pb.h"
+#include "io/frame_source.h"
+
+namespace dv::app {
+
+class CameraFeed {
+ public:
+  explicit CameraFeed(uint32_t camera_id) : camera_id_(camera_id) {}
+  uint32_t cameraId() const { return camera_id_; }
+
+  // Processing thread, after each processed frame.
+  void onFrame(const Frame& frame, const ssl::SSL_WrapperPacket& packet);
+
+  // Console threads. The newest detection frame (false: none yet); asking
+  // keeps the copies coming for the next few seconds.
+  bool detection(ssl::SSL_DetectionFrame& out);
+  // The next processed frame with its detections, waiting up to timeout_s;
+  // when none comes in time, the last one taken before (false: never one).
+  // `fresh` says which it is.
+  bool snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFrame& detection, bool& fresh);
+
+ private:
+  uint32_t camera_id_;
+  std::atomic<int64_t> detections_wanted_until_ms_{0};  // steady clock
+  std::atomic<int> snapshot_waiters_{0};
+  std::mutex mutex_;
+  std::condition_variable taken_;
+  bool have_detection_ = false;
+  ssl::SSL_DetectionFrame detection_;
+  uint64_t snapshots_ = 0;  // frames copied for snapshots
+  Frame frame_;             // the newest of them
+  ssl::SSL_DetectionFrame frame_detection_;
+};
+
+}  // namespace dv::app

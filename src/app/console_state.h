@@ -1,0 +1,69 @@
+#pragma once
+// What the console's HTTP threads share with serve's main loop. The main
+// loop owns the SiteRuntime, which is not thread-safe: it publishes the
+// status document once a second here, and a config change asked for on the
+// console is queued here and applied by the main loop (service()) exactly
+// as a SIGHUP reload; the HTTP thread waits for the notes. Camera images
+// and detections come through each camera's CameraFeed.
+#include <deque>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/camera_feed.h"
+#include "app/site_config.h"
+#include "geometry/geometry_io.h"
+
+namespace dv::app {
+
+class SiteRuntime;
+
+class ConsoleState {
+ public:
+  // `config_text`: the file's text as it was loaded; `config`: its parse.
+  ConsoleState(const Geometry& geometry, const std::vector<uint32_t>& camera_ids, const SiteConfig& config,
+               std::string config_text);
+
+  // Main loop: once a second.
+  void setStatus(nlohmann::json status);
+  // Main loop: each turn; applies the queued config changes.
+  void service(SiteRuntime& runtime);
+
+  // HTTP threads.
+  nlohmann::json status() const;
+  const Geometry& geometry() const { return geometry_; }
+  CameraFeed* feed(uint32_t camera_id);
+  std::shared_ptr<CameraFeed> sharedFeed(uint32_t camera_id);
+  const std::vector<std::shared_ptr<CameraFeed>>& feeds() const { return feeds_; }
+  std::string configText() const;
+  SiteConfig config() const;
+  const std::string& configPath() const { return config_path_; }
+  struct ReloadResult {
+    bool applied = false;  // false: the main loop did not take it in time
+    std::vector<std::string> notes;
+  };
+  // Hands a validated config (and the text it came from) to the main loop
+  // and waits up to timeout_s for what reload() said.
+  ReloadResult reload(const SiteConfig& next, const std::string& text, double timeout_s);
+
+ private:
+  struct Job {
+    SiteConfig config;
+    std::string text;
+    std::promise<std::vector<std::string>> notes;
+  };
+  const Geometry geometry_;
+  const std::string config_path_;
+  std::vector<std::shared_ptr<CameraFeed>> feeds_;  // shared with the cameras' frame hooks
+  mutable std::mutex mutex_;
+  nlohmann::json status_;
+  SiteConfig config_;  // the running config as the console last set it or as loaded
+  std::string config_text_;
+  std::deque<std::shared_ptr<Job>> jobs_;
+};
+
+}  // namespace dv::app

@@ -1,0 +1,241 @@
+// The console's JSON API against a real `dotvision serve` on loopback: the
+// status, cameras, detections and geometry a script reads; snapshots of the
+// size asked for, with their layers; refusal of every change without the
+// operator's token (401) or with a wrong one (403), the running config
+// untouched; a change with the token reaching the processor (the heights in
+// the status records) and, only when asked, the file with its comments; a
+// broken config refused with its errors, the old one kept.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "console_serve.h"
+#include "dotvision/ssl_geometry.pb.h"
+#include "geometry/proto_json.h"
+// Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
+#include <httplib.h>
+
+namespace dv {
+namespace {
+
+using nlohmann::json;
+const char* kToken = "field-a-operator-7f3c";
+
+class ConsoleApi : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    serve_ = new ConsoleServe("dv_console_api", "console: {token_file: " + std::string("TOKEN_FILE") + "}\n");
+    // The token file lives in the serve's temp dir; rewrite the placeholder.
+    const std::string token_file = serve_->dir().file("token");
+    std::ofstream(token_file) << kToken << "\n";
+    std::string text = serve_->configText();
+    text.replace(text.find("TOKEN_FILE"), 10, token_file);
+    std::ofstream(serve_->configPath()) << text;
+    started_ = serve_->start();
+  }
+  static void TearDownTestSuite() {
+    delete serve_;
+    serve_ = nullptr;
+  }
+  void SetUp() override { ASSERT_TRUE(started_) << serve_->log(); }
+
+  static httplib::Client client() {
+    httplib::Client c("127.0.0.1", serve_->port());
+    c.set_read_timeout(30, 0);
+    return c;
+  }
+  static json getJson(const std::string& path) {
+    auto r = client().Get(path.c_str());
+    if (!r || r->status != 200) return json();
+    return json::parse(r->body);
+  }
+  // The status records once every camera has processed frames.
+  static json liveStatus() {
+    json s;
+    ConsoleServe::waitFor([&] {
+      s = getJson("/api/status");
+      if (!s.is_object() || s["cameras"].size() != 2) return false;
+      for (const json& c : s["cameras"])
+        if (c["fps_out"].get<double>() <= 0) return false;
+      return true;
+    });
+    return s;
+  }
+  static double heightInUse() { return getJson("/api/status")["cameras"][0]["robot_height_mm"]["yellow"]; }
+
+  static ConsoleServe* serve_;
+  static bool started_;
+};
+ConsoleServe* ConsoleApi::serve_ = nullptr;
+bool ConsoleApi::started_ = false;
+
+TEST_F(ConsoleApi, StatusCamerasDetectionsAndGeometry) {
+  const json status = liveStatus();
+  ASSERT_EQ(status["cameras"].size(), 2u) << status.dump() << serve_->log();
+  EXPECT_EQ(status["config"], serve_->configPath());
+  for (const json& c : status["cameras"]) {
+    EXPECT_EQ(c["health"], "ok") << c.dump();
+    EXPECT_TRUE(c["latency"]["total"]["p99_ms"].is_number());
+    EXPECT_TRUE(c["frames"]["dropped"].is_number());
+  }
+  // The printed line says where the token is, not what it is.
+  EXPECT_EQ(serve_->printedToken(), "");
+  EXPECT_EQ(serve_->log().find(kToken), std::string::npos);
+
+  const json cams = getJson("/api/cameras");
+  ASSERT_EQ(cams["cameras"].size(), 2u) << cams.dump();
+  EXPECT_EQ(cams["cameras"][0]["image_width"], ConsoleServe::kWidth);
+  // Camera 0 hangs over x = -2250 and sees about 3 m either way along x.
+  ASSERT_GE(cams["cameras"][0]["footprint"].size(), 8u);
+  double x_min = 1e9, x_max = -1e9;
+  for (const json& p : cams["cameras"][0]["footprint"]) {
+    x_min = std::min(x_min, p[0].get<double>());
+    x_max = std::max(x_max, p[0].get<double>());
+  }
+  EXPECT_NEAR(x_min, -5250, 300);
+  EXPECT_NEAR(x_max, 750, 300);
+
+  // Detections come once asked for: the scene's robots in camera 0.
+  json cam0;
+  EXPECT_TRUE(ConsoleServe::waitFor([&] {
+    const json d = getJson("/api/detections");
+    if (d.is_null() || d["cameras"].size() != 2) return false;
+    cam0 = d["cameras"][0];
+    return !cam0["detection"].is_null();
+  }));
+  EXPECT_EQ(cam0["camera_id"], 0);
+  const json& d = cam0["detection"];
+  const size_t robots = d.value("robotsYellow", json::array()).size() + d.value("robotsBlue", json::array()).size();
+  // Those placed in its view, and maybe some of camera 1's in the overlap.
+  EXPECT_GE(robots, size_t(ConsoleServe::kCamera0Robots - 1)) << d.dump();
+  EXPECT_GT(d["tCapture"].get<double>(), 1.6e9);  // Unix seconds
+
+  auto g = client().Get("/api/geometry");
+  ASSERT_TRUE(g && g->status == 200);
+  ssl::SSL_GeometryData geometry;
+  parseCanonicalJson(g->body, geometry, "/api/geometry");
+  EXPECT_EQ(geometry.calib_size(), 2);
+  EXPECT_EQ(geometry.field().field_length(), 9000);
+
+  // The field point under the image center of camera 0 is below the camera.
+  const json p = getJson("/api/cameras/0/field_point?u=612&v=512");
+  EXPECT_NEAR(p["x"].get<double>(), -2250, 100) << p.dump();
+  EXPECT_NEAR(p["y"].get<double>(), 0, 100) << p.dump();
+}
+
+TEST_F(ConsoleApi, SnapshotsHaveTheSizeAskedForAndTheirLayers) {
+  liveStatus();
+  auto raw = client().Get("/api/cameras/0/snapshot.png?width=400");
+  ASSERT_TRUE(raw && raw->status == 200) << (raw ? raw->body : "no answer");
+  EXPECT_EQ(raw->get_header_value("Content-Type"), "image/png");
+  const cv::Mat a = cv::imdecode(std::vector<uchar>(raw->body.begin(), raw->body.end()), cv::IMREAD_COLOR);
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a.cols, 400);
+  EXPECT_EQ(a.rows, 335);  // 1024 * 400 / 1224, rounded
+  auto drawn = client().Get("/api/cameras/0/snapshot.png?width=400&layer=raw,lines,detections");
+  ASSERT_TRUE(drawn && drawn->status == 200);
+  const cv::Mat b = cv::imdecode(std::vector<uchar>(drawn->body.begin(), drawn->body.end()), cv::IMREAD_COLOR);
+  ASSERT_EQ(b.size(), a.size());
+  // The field lines are drawn in magenta, which the camera image never has.
+  auto magenta = [](const cv::Mat& m) {
+    int n = 0;
+    for (int y = 0; y < m.rows; ++y)
+      for (int x = 0; x < m.cols; ++x) {
+        const cv::Vec3b px = m.at<cv::Vec3b>(y, x);
+        n += px[0] > 200 && px[2] > 200 && px[1] < 80;
+      }
+    return n;
+  };
+  EXPECT_EQ(magenta(a), 0);
+  EXPECT_GT(magenta(b), 500);
+  auto jpg = client().Get("/api/cameras/1/snapshot.jpg");
+  ASSERT_TRUE(jpg && jpg->status == 200);
+  EXPECT_EQ(jpg->get_header_value("Content-Type"), "image/jpeg");
+  const cv::Mat c = cv::imdecode(std::vector<uchar>(jpg->body.begin(), jpg->body.end()), cv::IMREAD_COLOR);
+  EXPECT_EQ(c.cols, 960);  // the default width
+
+  auto layer = client().Get("/api/cameras/0/snapshot.png?layer=chroma2");
+  ASSERT_TRUE(layer);
+  EXPECT_EQ(layer->status, 400);
+  EXPECT_NE(layer->body.find("unknown layer 'chroma2'"), std::string::npos) << layer->body;
+  auto width = client().Get("/api/cameras/0/snapshot.png?width=wide");
+  ASSERT_TRUE(width);
+  EXPECT_EQ(width->status, 400);
+  auto none = client().Get("/api/cameras/7/snapshot.png");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 404);
+  EXPECT_NE(none->body.find("no camera 7"), std::string::npos) << none->body;
+}
+
+TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
+  liveStatus();
+  const std::string original = serve_->configText();
+  ASSERT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 140; })) << getJson("/api/status").dump();
+
+  // Without a token: 401; with a wrong one: 403. Nothing changes.
+  const std::string patch = R"({"robot_heights.default": 130})";
+  auto c = client();
+  auto r = c.Patch("/api/config", patch, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 401);
+  EXPECT_NE(r->body.find("needs the operator's token"), std::string::npos) << r->body;
+  r = c.Put("/api/config?save=1", "cameras: []\n", "application/yaml");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 401);
+  r = c.Patch("/api/config", {{"Authorization", "Bearer not-the-token"}}, patch, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  r = c.Patch("/api/config", {{"X-Dotvision-Token", std::string(kToken) + "x"}}, patch, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  EXPECT_EQ(heightInUse(), 140);
+  EXPECT_EQ(serve_->configText(), original);
+  EXPECT_EQ(client().Get("/api/config")->body, original);
+
+  // With the token: applied to the processors, the file untouched.
+  const httplib::Headers auth = {{"Authorization", std::string("Bearer ") + kToken}};
+  r = c.Patch("/api/config", auth, patch, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  json answer = json::parse(r->body);
+  EXPECT_TRUE(answer["applied"]);
+  EXPECT_FALSE(answer["saved"]);
+  EXPECT_TRUE(answer["layout_kept"]);
+  EXPECT_NE(answer["notes"].dump().find("yellow 130.0 mm"), std::string::npos) << r->body;
+  EXPECT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 130; }));
+  EXPECT_EQ(serve_->configText(), original);
+  EXPECT_NE(client().Get("/api/config")->body.find("default: 130   # the league's usual"), std::string::npos);
+
+  // A broken config is refused with the error naming the file and line; the running one stays.
+  r = c.Put("/api/config", auth, "cameras:\n  - id: 0\n    sorce: x\n", "application/yaml");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  answer = json::parse(r->body);
+  EXPECT_FALSE(answer["applied"]);
+  EXPECT_NE(answer["error"].get<std::string>().find(serve_->configPath() + ":3"), std::string::npos) << r->body;
+  EXPECT_NE(answer["error"].get<std::string>().find("did you mean 'source'?"), std::string::npos) << r->body;
+  r = c.Patch("/api/config", auth, R"({"robot_heights.default": 500})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("robot_heights.default"), std::string::npos) << r->body;
+  r = c.Patch("/api/config", auth, "[1, 2]", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  EXPECT_EQ(heightInUse(), 130);
+
+  // Saved when asked: the file gets the edit and keeps its comments.
+  r = c.Patch("/api/config?save=1", auth, R"({"robot_heights.default": 135})",
+              "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_TRUE(json::parse(r->body)["saved"]);
+  const std::string saved = serve_->configText();
+  EXPECT_NE(saved.find("default: 135   # the league's usual"), std::string::npos) << saved;
+  EXPECT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 135; }));
+}
+
+}  // namespace
+}  // namespace dv

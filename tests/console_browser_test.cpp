@@ -1,0 +1,143 @@
+// The console in a real browser (Debian's chromium, headless, driven by
+// chromedriver) against a live `dotvision serve`: the field page draws the
+// robots the cameras report, the camera page loads frames of the size it
+// asked for, and a robot height changed on the settings page is refused
+// with a wrong token and, with the printed one, reaches the processors and
+// the config file. Screenshots go to <build>/test_artifacts/console/.
+// Skipped, saying why, where chromium or chromedriver is not installed.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "console_serve.h"
+#include "webdriver.h"
+
+namespace dv {
+namespace {
+
+using nlohmann::json;
+const std::string kArtifacts = std::string(DV_BINARY_DIR) + "/test_artifacts/console/";
+
+class ConsoleBrowser : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (!WebDriver::skipReason().empty()) return;
+    serve_ = new ConsoleServe("dv_console_browser");
+    started_ = serve_->start();
+    profile_ = new TempDir("dv_console_chromium");
+    if (started_) driver_ = new WebDriver(profile_->path().string());
+  }
+  static void TearDownTestSuite() {
+    delete driver_;
+    delete serve_;
+    delete profile_;
+    driver_ = nullptr;
+    serve_ = nullptr;
+    profile_ = nullptr;
+  }
+  void SetUp() override {
+    if (const std::string why = WebDriver::skipReason(); !why.empty()) GTEST_SKIP() << why;
+    ASSERT_TRUE(started_) << serve_->log();
+    ASSERT_TRUE(driver_ && driver_->ok()) << (driver_ ? driver_->why() : "");
+  }
+  static json apiJson(const std::string& path) {
+    httplib::Client c("127.0.0.1", serve_->port());
+    c.set_read_timeout(30, 0);
+    auto r = c.Get(path.c_str());
+    return r && r->status == 200 ? json::parse(r->body) : json();
+  }
+  static double heightInUse() {
+    const json s = apiJson("/api/status");
+    return s.is_object() && !s["cameras"].empty() ? s["cameras"][0]["robot_height_mm"]["yellow"].get<double>() : -1;
+  }
+
+  static ConsoleServe* serve_;
+  static bool started_;
+  static TempDir* profile_;
+  static WebDriver* driver_;
+};
+ConsoleServe* ConsoleBrowser::serve_ = nullptr;
+bool ConsoleBrowser::started_ = false;
+TempDir* ConsoleBrowser::profile_ = nullptr;
+WebDriver* ConsoleBrowser::driver_ = nullptr;
+
+TEST_F(ConsoleBrowser, FieldPageDrawsTheRobotsEveryCameraReports) {
+  WebDriver& d = *driver_;
+  d.navigate(serve_->url("/"));
+  const std::string cam0 = "document.querySelectorAll('#detections [data-camera=\"0\"] circle.robot').length";
+  EXPECT_TRUE(d.waitUntil("return " + cam0 + " >= " + std::to_string(ConsoleServe::kCamera0Robots - 1) +
+                          " && document.querySelectorAll('#detections [data-camera=\"1\"] circle.robot').length > 0"))
+      << d.execute("return document.getElementById('detections').innerHTML");
+  // What is drawn is what the page received: one circle per robot reported.
+  const json drawn = d.execute(
+      "return [document.querySelectorAll('#detections circle.robot').length, "
+      "Number(document.getElementById('field').dataset.robots)]");
+  EXPECT_EQ(drawn[0], drawn[1]) << drawn.dump();
+  // The field's lines, both footprints, a badge per camera with its health.
+  EXPECT_GE(d.execute("return document.querySelectorAll('#lines .line').length"), 10);
+  EXPECT_EQ(d.execute("return document.querySelectorAll('#footprints polygon').length"), 2);
+  EXPECT_TRUE(d.waitUntil("return document.querySelectorAll('#badges .badge.ok').length == 2"))
+      << d.execute("return document.getElementById('badges').innerText");
+  EXPECT_TRUE(d.screenshot(kArtifacts + "field.png"));
+}
+
+TEST_F(ConsoleBrowser, CameraPageLoadsFramesOfTheSizeItAsked) {
+  WebDriver& d = *driver_;
+  d.navigate(serve_->url("/camera.html?camera=1"));
+  ASSERT_TRUE(d.waitUntil("const i = document.getElementById('snapshot'); return Number(i.dataset.loaded) >= 3"))
+      << d.execute("return document.getElementById('snapshot').src");
+  const json img = d.execute(
+      "const i = document.getElementById('snapshot'); "
+      "return [i.naturalWidth, i.naturalHeight, new URL(i.src).searchParams.get('width'), i.src]");
+  const int asked = std::stoi(img[2].get<std::string>());
+  EXPECT_GT(asked, 500) << img.dump();  // a 1280 px window asks for its width, at most 960
+  EXPECT_LE(asked, 960) << img.dump();
+  EXPECT_EQ(img[0], asked) << img.dump();
+  EXPECT_EQ(img[1], static_cast<int>(std::lround(double(ConsoleServe::kHeight) * asked / ConsoleServe::kWidth)))
+      << img.dump();
+  EXPECT_NE(img[3].get<std::string>().find("/api/cameras/1/snapshot.jpg"), std::string::npos) << img.dump();
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('badge').textContent.startsWith('cam 1')"));
+  EXPECT_TRUE(d.screenshot(kArtifacts + "camera.png"));
+  d.navigate(serve_->url("/status.html"));
+  EXPECT_TRUE(d.waitUntil("return document.querySelectorAll('#status tbody tr').length == 2"));
+  EXPECT_TRUE(d.screenshot(kArtifacts + "status.png"));
+}
+
+TEST_F(ConsoleBrowser, HeightSetOnTheSettingsPageReachesTheProcessorAndTheFile) {
+  WebDriver& d = *driver_;
+  ASSERT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 140; }));
+  const std::string loaded = "return document.getElementById('robot_heights.default').value == '140'";
+  auto setDefault = [&](const std::string& mm, const char* button) {
+    const std::string input = d.find("[id='robot_heights.default']");
+    ASSERT_FALSE(input.empty());
+    d.clear(input);
+    d.type(input, mm);
+    d.click(d.find(button));
+  };
+  // A wrong token: refused, shown as such, nothing changes.
+  d.navigate(serve_->url("/settings.html?try=1#token=0000"));
+  ASSERT_TRUE(d.waitUntil(loaded));
+  setDefault("133", "#apply-save");
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('result').dataset.status == '403'"))
+      << d.execute("return document.getElementById('result').textContent");
+  EXPECT_TRUE(d.screenshot(kArtifacts + "settings_refused.png"));
+  EXPECT_EQ(heightInUse(), 140);
+  EXPECT_NE(serve_->configText().find("default: 140"), std::string::npos);
+
+  // The token serve printed: applied and saved.
+  ASSERT_FALSE(serve_->printedToken().empty()) << serve_->log();
+  d.navigate(serve_->url("/settings.html?try=2#token=" + serve_->printedToken()));
+  ASSERT_TRUE(d.waitUntil(loaded));
+  setDefault("133", "#apply-save");
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('result').dataset.status == '200'"))
+      << d.execute("return document.getElementById('result').textContent");
+  EXPECT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 133; }));
+  EXPECT_NE(serve_->configText().find("default: 133   # the league's usual"), std::string::npos)
+      << serve_->configText();
+  // The page shows the new value, read back from the server.
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('robot_heights.default').value == '133'"));
+  EXPECT_TRUE(d.screenshot(kArtifacts + "settings.png"));
+}
+
+}  // namespace
+}  // namespace dv
