@@ -91,7 +91,7 @@ TEST_F(CalibrateCli, BadOptionsExitTwoAndWriteNothing) {
   const auto out = dir_ / "bad.json";
   for (const std::string extra :
        {" --corners 1,2,3", " --corners 1,2,3,4,5,6,7,x", " --point 1,2=3", " --corners 10,10,20,20,9000,10,30,30",
-        " --frobnicate 3"}) {
+        " --frobnicate 3", " --region x=0", " --near 1,2,3", " --region center --near 0,0"}) {
     const auto r = runCli(base() + extra + " --camera-height 4000 --out " + out.string());
     EXPECT_EQ(r.code, 2) << extra << ": " << r.out;
     EXPECT_FALSE(fs::exists(out)) << extra;

@@ -98,7 +98,7 @@ CommandFn addCalibrateCommand(CLI::App& root) {
   cmd->add_option("--overlay", opt->overlay, "Overlay PNG (default: OUT with .overlay.png)");
   cmd->add_option("--region", opt->region,
                   std::string("Where the camera looks, settling the field's half-turn symmetry instead of the "
-                              "camera-id layout: ") +
+                              "camera-id layout (quote it in a shell): ") +
                       regionHintNames());
   cmd->add_option("--near", opt->near, "X,Y: roughly where the camera looks (field mm), instead of the layout");
   cmd->add_option("--report", opt->report, "Write the calibration report as JSON (also when refused)");
