@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "calibration_scene.h"
@@ -90,7 +91,7 @@ TEST_F(CalibrateCli, BadOptionsExitTwoAndWriteNothing) {
   const auto out = dir_ / "bad.json";
   for (const std::string extra :
        {" --corners 1,2,3", " --corners 1,2,3,4,5,6,7,x", " --point 1,2=3", " --corners 10,10,20,20,9000,10,30,30",
-        " --frobnicate 3"}) {
+        " --frobnicate 3", " --region x=0", " --near 1,2,3", " --region center --near 0,0"}) {
     const auto r = runCli(base() + extra + " --camera-height 4000 --out " + out.string());
     EXPECT_EQ(r.code, 2) << extra << ": " << r.out;
     EXPECT_FALSE(fs::exists(out)) << extra;
@@ -113,6 +114,82 @@ TEST_F(CalibrateCli, FailedGateExitsOneAndWritesNothing) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("no calibration written"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Camera 0 of two by the layout covers x<0, but this one hangs over x>0, as
+// with a venue that numbers its cameras differently.
+class CalibrateCliOtherHalf : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("dv_calib_half_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    field_ = FieldModel::divisionB();
+    truth_ = testing::makeCamera(0, 1224, 1024, 725, 0.04, 611.5, 511.5, {2250, 0, 4000}, kPi / 2, 0);
+    testing::SceneOptions so;
+    so.robots = 4;
+    cv::imwrite((dir_ / "frame.png").string(), testing::renderFieldImage(truth_, field_, so));
+    Geometry g;
+    g.field = field_;
+    saveGeometry(g, (dir_ / "field.json").string());
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static CliRun calibrate(const std::string& extra, const fs::path& out) {
+    return runCli("calibrate --image " + (dir_ / "frame.png").string() + " --geometry " +
+                  (dir_ / "field.json").string() + " --camera-id 0 --num-cameras 2 --camera-height 4000 --out " +
+                  out.string() + extra);
+  }
+  static double error(const fs::path& out) {
+    const Geometry g = loadGeometry(out.string());
+    EXPECT_EQ(g.cameras.size(), 1u);
+    return g.cameras.empty() ? 1e9 : meanFieldPositionError(truth_, g.cameras[0], 150, field_.withBoundary(), 32);
+  }
+  static inline fs::path dir_;
+  static inline FieldModel field_;
+  static inline CameraCalibration truth_;
+};
+
+TEST_F(CalibrateCliOtherHalf, RegionHintGivesTheRightHalfAndSaysSo) {
+  const auto out = dir_ / "region.json";
+  const auto r = calibrate(" --region 'x>0'", out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_LE(error(out), 1.0);
+  EXPECT_NE(r.out.find("field symmetry settled by --region x>0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("alternative is a camera at (-22"), std::string::npos) << r.out;
+}
+
+TEST_F(CalibrateCliOtherHalf, NearHintGivesTheRightHalfAndTheReportSaysSo) {
+  const auto out = dir_ / "near.json";
+  const auto report = dir_ / "near.report.json";
+  const auto r = calibrate(" --near 2500,300 --report " + report.string(), out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_LE(error(out), 1.0);
+  EXPECT_NE(r.out.find("settled by --near 2500,300"), std::string::npos) << r.out;
+  std::ifstream f(report);
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_TRUE(j["verdict"]["passed"].get<bool>());
+  EXPECT_EQ(j["symmetry"]["basis"], "--near 2500,300");
+  EXPECT_NEAR(j["symmetry"]["alternative_view_mm"][0].get<double>(), -2250, 50);
+  EXPECT_NEAR(j["parameters"]["position_mm"][0].get<double>(), 2250, 20);
+  // Lines found and used, each group with its model line and residual.
+  EXPECT_GE(j["lines"]["groups_used"].get<int>(), 3);
+  bool halfway = false;
+  for (const auto& g : j["lines"]["groups"])
+    if (g.value("line", "") == "HalfwayLine") halfway = g["mean_residual_px"].get<double>() < 1.0;
+  EXPECT_TRUE(halfway) << j["lines"].dump();
+}
+
+// Without a hint the layout decides: the calibration lands on the other
+// half, and the output says that the layout decided and what the
+// alternative is.
+TEST_F(CalibrateCliOtherHalf, WithoutHintTheLayoutDecidesAndNamesTheAlternative) {
+  const auto out = dir_ / "layout.json";
+  const auto r = calibrate("", out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("field symmetry settled by the camera-id layout (camera 0 of 2"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("alternative is a camera at (22"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("give --near 22"), std::string::npos) << r.out;
+  EXPECT_GT(error(out), 1000);  // the twin, as the layout says
 }
 
 }  // namespace

@@ -97,6 +97,44 @@ TEST(CalibrationRendered, SideViewFourPoints) {
   EXPECT_LE(gridError(r, out.calibration, "rendered side view"), 2.0);
 }
 
+// The two views the users could not calibrate from four exact
+// crossings: a corner camera tilted 25 deg and a halfway-line camera tilted
+// 11 deg, both given camera id 0 although they look at x > 0 (the points
+// alone place the camera).
+TEST(CalibrationRendered, FourExactPointsOnTiltedCornerAndHalfwayViews) {
+  struct View {
+    const char* name;
+    FieldPoint position, look_at;
+    double focal, k;
+    bool give_height;
+    std::vector<FieldPoint> crossings;
+  };
+  const View views[] = {
+      {"corner tilted 25 deg", {2700, 1000, 4000}, {4000, 2300, 0}, 700, 0.12, false,
+       {{4500, 3000, 0}, {4500, 1000, 0}, {3500, 1000, 0}, {0, 3000, 0}}},
+      {"halfway line tilted 11 deg", {-600, -350, 3500}, {0, 0, 0}, 430, -0.02, true,
+       {{0, -3000, 0}, {0, 3000, 0}, {-3500, -1000, 0}, {-3500, 1000, 0}}},
+  };
+  for (const auto& v : views) {
+    const Rendered r = render(FieldModel::divisionB(), makeCamera(0, v.position, v.look_at, v.focal, v.k, {12, -9}, 1224, 1024),
+                              6, 21);
+    const CameraModel cam(r.truth);
+    CalibrationRequest req;
+    req.camera_id = 0, req.num_cameras = 2;
+    if (v.give_height) req.camera_height_mm = v.position.z;
+    for (const auto& p : v.crossings) {
+      const auto px = cam.fieldToImage(p);
+      ASSERT_TRUE(px && px->u > 20 && px->v > 20 && px->u < 1204 && px->v < 1004) << v.name << " " << p.x << "," << p.y;
+      req.points.push_back({p, *px});
+    }
+    const auto out = calibrateCamera(r.image, r.spec.field, req);
+    ASSERT_FALSE(out.problem) << v.name << ": " << *out.problem;
+    ASSERT_TRUE(out.symmetry);
+    EXPECT_EQ(out.symmetry->basis, "the given points");
+    EXPECT_LE(gridError(r, out.calibration, v.name), 0.5);
+  }
+}
+
 TEST(CalibrationRendered, AutomaticTiltedCamera) {
   const Rendered r = render(FieldModel::divisionA(),
                             makeCamera(1, {-2500, 1500, 4500}, {-3200, 2400, 0}, 760, 0.1, {10, -6}, 1224, 1024), 10, 14);

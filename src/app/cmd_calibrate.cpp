@@ -1,12 +1,15 @@
 // `dotvision calibrate --image F --geometry FIELD.json --camera-id N
 //   [--corners u1,v1,...,u4,v4] [--point X,Y=U,V ...] [--camera-height MM]
-//   --out CALIB.json`: one camera's calibration from one image of the field.
-// Writes SSL_GeometryData (the field plus this camera), an overlay PNG of the
-// model lines over the image, and prints the measures. Nothing is written
-// when the calibration fails the quality gate (exit 1).
+//   [--region R | --near X,Y] [--report REPORT.json] --out CALIB.json`: one
+// camera's calibration from one image of the field. Writes SSL_GeometryData
+// (the field plus this camera), an overlay PNG of the model lines over the
+// image, and prints the measures and the report (also as JSON with
+// --report). Nothing but the report is written when the calibration is
+// refused (exit 1).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -16,6 +19,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "geometry/calibration/calibrate_camera.h"
+#include "geometry/calibration/calibration_report.h"
 #include "geometry/calibration/line_pixels.h"
 #include "geometry/geometry_io.h"
 
@@ -30,6 +34,7 @@ struct CalibrateOptions {
   std::string corners;
   std::vector<std::string> points;
   double camera_height = 0;
+  std::string region, near, report;
 };
 
 std::vector<double> parseNumbers(const std::string& text, char sep, const std::string& what) {
@@ -83,17 +88,25 @@ CommandFn addCalibrateCommand(CLI::App& root) {
   cmd->add_option("--num-cameras", opt->num_cameras,
                   "Cameras on the field (1, 2, 4, 6, 8; default 4 for Division A size, else 2)");
   cmd->add_option("--corners", opt->corners,
-                  "u1,v1,...,u4,v4: image positions of the region's corners, counter-clockwise from "
-                  "the smallest field x and y");
+                  "u1,v1,...,u4,v4: image positions of the region's corners (--region, else the camera id's), "
+                  "counter-clockwise from the smallest field x and y");
   cmd->add_option("--point", opt->points, "X,Y=U,V: a field point (mm) and its image position (px); 4+")
       ->take_all();
   cmd->add_option("--camera-height", opt->camera_height, "Camera height in mm (needed looking straight down)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", opt->out, "Output SSL_GeometryData (.json canonical JSON, or .yaml)")->required();
   cmd->add_option("--overlay", opt->overlay, "Overlay PNG (default: OUT with .overlay.png)");
+  cmd->add_option("--region", opt->region,
+                  std::string("Where the camera looks, settling the field's half-turn symmetry instead of the "
+                              "camera-id layout (quote it in a shell): ") +
+                      regionHintNames());
+  cmd->add_option("--near", opt->near, "X,Y: roughly where the camera looks (field mm), instead of the layout");
+  cmd->add_option("--report", opt->report, "Write the calibration report as JSON (also when refused)");
   return [opt] {
     if (!opt->corners.empty() && !opt->points.empty())
       throw InputError("command line", "give either --corners or --point, not both");
+    if (!opt->region.empty() && !opt->near.empty())
+      throw InputError("command line", "give either --region or --near, not both");
     Geometry geometry = loadGeometry(opt->geometry);
     geometry.cameras.clear();
     if (geometry.field.lines.empty())
@@ -105,10 +118,16 @@ CommandFn addCalibrateCommand(CLI::App& root) {
     req.num_cameras = opt->num_cameras;
     req.source = opt->image;
     if (opt->camera_height > 0) req.camera_height_mm = opt->camera_height;
+    if (!opt->region.empty()) req.hint = parseRegionHint(opt->region, geometry.field, "command line");
+    if (!opt->near.empty()) req.hint = parseNearHint(opt->near, geometry.field, "command line");
     if (!opt->corners.empty()) {
       const auto v = parseNumbers(opt->corners, ',', "--corners");
       if (v.size() != 8) throw InputError("command line", "--corners: expected 8 numbers u1,v1,...,u4,v4");
-      const FieldRect r = cameraRegionFor(geometry.field, req.camera_id, req.num_cameras, "command line");
+      if (req.hint.kind == ViewHint::Kind::Near)
+        throw InputError("command line", "--corners are the corners of a region: give --region, not --near");
+      const FieldRect r = req.hint.kind == ViewHint::Kind::Region
+                              ? req.hint.region
+                              : cameraRegionFor(geometry.field, req.camera_id, req.num_cameras, "command line");
       const auto corners = regionCornersCounterClockwise(r.x_min, r.x_max, r.y_min, r.y_max);
       for (int i = 0; i < 4; ++i) req.points.push_back({corners[i], {v[2 * i], v[2 * i + 1]}});
     }
@@ -127,6 +146,15 @@ CommandFn addCalibrateCommand(CLI::App& root) {
         opt->camera_id, out.automatic ? "automatic" : "points", seconds, m.overlap_ratio, m.mean_distance_px,
         m.mean_distance_mm, m.line_pixels, m.model_support, out.refinement_accepted ? "true" : "false",
         out.problem ? "false" : "true");
+    const CalibrationReport report =
+        makeCalibrationReport(out, geometry.field, opt->image, uint32_t(opt->camera_id), seconds);
+    std::fputs(formatReport(report).c_str(), stdout);
+    std::fflush(stdout);
+    if (!opt->report.empty()) {
+      std::ofstream f(opt->report);
+      f << reportToJson(report).dump(2) << "\n";
+      if (!f) throw InputError(opt->report, "cannot write the report");
+    }
     if (out.problem) {
       std::fprintf(stderr, "dotvision calibrate: %s: no calibration written: %s\n", opt->image.c_str(),
                    out.problem->c_str());

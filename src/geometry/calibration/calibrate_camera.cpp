@@ -23,10 +23,13 @@ FieldRect cameraRegionFor(const FieldModel& field, uint32_t camera_id, unsigned 
 }
 
 LineObservation observeLines(const cv::Mat& image, const FieldModel& field, const FieldRect& region) {
-  LineObservation obs;
   // Expected scale: the camera sees its region plus some overlap.
   const double area = (region.x_max - region.x_min) * (region.y_max - region.y_min) * 1.4;
-  const double mm_per_px = std::sqrt(area / (double(image.cols) * image.rows));
+  return observeLinesAtScale(image, field, std::sqrt(area / (double(image.cols) * image.rows)));
+}
+
+LineObservation observeLinesAtScale(const cv::Mat& image, const FieldModel& field, double mm_per_px) {
+  LineObservation obs;
   obs.half_width_px = halfLineWidthPx(mm_per_px, field.line_thickness);
   LinePixelOptions lp;
   lp.half_width_px = obs.half_width_px;
@@ -55,7 +58,7 @@ PixelDistortion estimateDistortion(const LineObservation& obs, int w, int h,
 }
 
 void finish(CalibrationOutcome& r, const LineObservation& obs, const FieldModel& field,
-            const FieldRect& region) {
+            const std::optional<FieldRect>& region) {
   r.measures = measureCalibration(r.calibration, field, obs.pixels, obs.distance);
   QualityGateOptions g;
   g.region = region;
@@ -79,12 +82,68 @@ std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool h
   return std::string(buf);
 }
 
+// Field size of an image pixel the points imply (mean over point pairs).
+double pointsScale(const std::vector<PointCorrespondence>& pts) {
+  double sum = 0;
+  int n = 0;
+  for (size_t i = 0; i < pts.size(); ++i)
+    for (size_t j = i + 1; j < pts.size(); ++j) {
+      const double px = std::hypot(pts[i].image.u - pts[j].image.u, pts[i].image.v - pts[j].image.v);
+      if (px < 1) continue;
+      sum += std::hypot(pts[i].field.x - pts[j].field.x, pts[i].field.y - pts[j].field.y) / px;
+      ++n;
+    }
+  return n ? sum / n : 0;
+}
+
+// Where the automatic search looks, and what settles the symmetry.
+struct SearchPlan {
+  FieldRect region;
+  bool gate_on_region = true;  // the region's center must be in view
+  FieldMm target{0, 0};
+  std::string basis;
+};
+
+SearchPlan planSearch(const FieldModel& field, const CalibrationRequest& req) {
+  SearchPlan plan;
+  const auto center = [](const FieldRect& r) { return FieldMm{(r.x_min + r.x_max) / 2, (r.y_min + r.y_max) / 2}; };
+  char buf[200];
+  switch (req.hint.kind) {
+    case ViewHint::Kind::Region:
+      plan.region = req.hint.region;
+      plan.target = center(plan.region);
+      plan.basis = req.hint.describe();
+      break;
+    case ViewHint::Kind::Near: {
+      // A camera's share of the field in the layout, centered on the point.
+      const FieldRect size = cameraRegionFor(field, 0, req.num_cameras, req.source);
+      const double hx = (size.x_max - size.x_min) / 2, hy = (size.y_max - size.y_min) / 2;
+      plan.target = req.hint.near;
+      plan.region = {plan.target.x - hx, plan.target.x + hx, plan.target.y - hy, plan.target.y + hy};
+      plan.gate_on_region = false;  // "roughly where it looks"
+      plan.basis = req.hint.describe();
+      break;
+    }
+    case ViewHint::Kind::None: {
+      plan.region = cameraRegionFor(field, req.camera_id, req.num_cameras, req.source);
+      plan.target = center(plan.region);
+      const unsigned n = req.num_cameras ? req.num_cameras : (field.field_length >= 12000 ? 4u : 2u);
+      std::snprintf(buf, sizeof buf, "the camera-id layout (camera %u of %u covers x %.0f..%.0f, y %.0f..%.0f)",
+                    req.camera_id, n, plan.region.x_min, plan.region.x_max, plan.region.y_min, plan.region.y_max);
+      plan.basis = buf;
+      break;
+    }
+  }
+  return plan;
+}
+
 }  // namespace
 
 CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field,
                                    const CalibrationRequest& req) {
   if (field.lines.empty()) throw InputError(req.source, "the field has no lines to calibrate on");
-  const FieldRect region = cameraRegionFor(field, req.camera_id, req.num_cameras, req.source);
+  const bool with_points = !req.points.empty();
+  const SearchPlan plan = with_points ? SearchPlan{} : planSearch(field, req);
   if (image.empty() || image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3))
     throw InputError(req.source, "expected an 8-bit Bayer mosaic or BGR image");
   const int w = image.cols, h = image.rows;
@@ -93,24 +152,32 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
       throw InputError(req.source, "point (" + std::to_string(p.image.u) + ", " + std::to_string(p.image.v) +
                                        ") lies outside the " + std::to_string(w) + "x" + std::to_string(h) +
                                        " image");
-  if (!req.points.empty() && req.points.size() < 4)
+  if (with_points && req.points.size() < 4)
     throw InputError(req.source, "four or more points are needed, got " + std::to_string(req.points.size()));
   if (req.camera_height_mm && !(*req.camera_height_mm > 0))
     throw InputError(req.source, "the camera height must be positive");
 
-  const LineObservation obs = observeLines(image, field, region);
+  CalibrationOutcome r;
+  if (with_points) {
+    if (const auto why = pointSetProblem(req.points, w, h)) {
+      r.problem = "the points cannot fix a camera pose: " + *why;
+      return r;
+    }
+  }
+  r.lines = with_points ? observeLinesAtScale(image, field, pointsScale(req.points))
+                        : observeLines(image, field, plan.region);
+  const LineObservation& obs = r.lines;
   if (obs.pixels.size() < 300 || obs.groups.empty())
     throw InputError(req.source, "no field lines found in the image (" + std::to_string(obs.pixels.size()) +
                                      " line pixels, " + std::to_string(obs.groups.size()) + " line groups)");
 
-  CalibrationOutcome r;
   const PixelDistortion distortion = estimateDistortion(obs, w, h, r.intrinsics);
   const FieldLineModel model(field);
   LineFitOptions lf;
   lf.fix_height = req.camera_height_mm.has_value();
   lf.image_width = w, lf.image_height = h;
 
-  if (!req.points.empty()) {
+  if (with_points) {
     PointPoseOptions po;
     po.camera_height_mm = req.camera_height_mm;
     po.image_width = w, po.image_height = h;
@@ -122,27 +189,39 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
     const auto fit = refineOnLines(pose->params, obs.pixels, model, req.points, lf);
     r.refinement_accepted = fit.improved;
     r.calibration = fit.params.toCalibration(req.camera_id, w, h);
-    finish(r, obs, field, region);
+    r.has_pose = true;
+    r.symmetry = decidedByPoints(fit.params, w, h);
+    // The points say where the camera is: no region to check against.
+    finish(r, obs, field, std::nullopt);
     if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
     return r;
   }
 
   r.automatic = true;
+  const auto refuse = [&r](const std::string& why) {
+    r.problem = "cannot decide the camera pose from the lines alone (" + why +
+                "); give four points with --corners or --point";
+  };
   AutoExtrinsicsOptions ao;
   ao.camera_height_mm = req.camera_height_mm;
-  const auto found = findPoseAutomatically(obs, distortion, field, region, w, h, ao);
+  const auto found = findPoseAutomatically(obs, distortion, field, plan.region, w, h, ao);
   if (!found.params) {
-    r.problem = "cannot decide the camera pose from the lines alone (" + found.reason +
-                "); give four points with --corners or --point";
+    refuse(found.reason);
     return r;
   }
+  const SymmetryChoice choice = chooseNearTarget(*found.params, plan.target, plan.basis, w, h);
+  r.symmetry = choice.decision;
   r.refinement_accepted = true;
-  r.calibration = found.params->toCalibration(req.camera_id, w, h);
-  finish(r, obs, field, region);
+  r.calibration = choice.params.toCalibration(req.camera_id, w, h);
+  r.has_pose = true;
+  if (!choice.decision.decided) {
+    r.problem = "the field's half-turn symmetry cannot be settled by " + plan.basis + ": " +
+                choice.decision.reason + "; give --near X,Y (roughly where the camera looks) or four points";
+    return r;
+  }
+  finish(r, obs, field, plan.gate_on_region ? std::optional<FieldRect>(plan.region) : std::nullopt);
   if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
-  if (r.problem)
-    r.problem = "cannot decide the camera pose from the lines alone (" + *r.problem +
-                "); give four points with --corners or --point";
+  if (r.problem) refuse(*r.problem);
   return r;
 }
 

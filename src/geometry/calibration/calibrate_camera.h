@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "geometry/calibration/calibration_quality.h"
+#include "geometry/calibration/field_symmetry.h"
 #include "geometry/calibration/intrinsics.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/point_pose.h"
+#include "geometry/calibration/view_hint.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 
@@ -24,8 +26,12 @@ struct CalibrationRequest {
   // sized field and 2 otherwise.
   unsigned num_cameras = 0;
   // Four or more known field points with their image positions; empty asks
-  // for the automatic mode.
+  // for the automatic mode. The points alone place the camera: neither the
+  // camera id's region nor the hint is used then.
   std::vector<PointCorrespondence> points;
+  // Automatic mode: where the camera looks; without it the camera-id layout
+  // settles the field's symmetry (and says so).
+  ViewHint hint;
   std::optional<double> camera_height_mm;
   std::string source = "image";  // names the image in messages
 };
@@ -39,8 +45,11 @@ struct LineObservation {
   int half_width_px = 3;
 };
 
-// `image`: a Bayer RGGB mosaic (CV_8UC1) or BGR (CV_8UC3).
+// `image`: a Bayer RGGB mosaic (CV_8UC1) or BGR (CV_8UC3); the line width
+// in pixels is expected from the camera seeing `region` (plus some overlap)
+// or from the field size of a pixel.
 LineObservation observeLines(const cv::Mat& image, const FieldModel& field, const FieldRect& region);
+LineObservation observeLinesAtScale(const cv::Mat& image, const FieldModel& field, double mm_per_px);
 
 struct CalibrationOutcome {
   CameraCalibration calibration;
@@ -51,6 +60,12 @@ struct CalibrationOutcome {
   std::optional<IntrinsicsResult> intrinsics;
   bool refinement_accepted = false;
   bool automatic = false;
+  bool has_pose = false;  // `calibration` holds a pose (passed or refused)
+  // How the field's half-turn symmetry was settled; empty when no pose was
+  // found to decide about.
+  std::optional<SymmetryDecision> symmetry;
+  // What the image showed (for the report).
+  LineObservation lines;
 };
 
 // The region of the field camera `id` covers (SSL-Vision layout).

@@ -31,7 +31,7 @@ double FieldLineElement::distance(FieldMm p) const {
 FieldLineModel::FieldLineModel(const FieldModel& field) {
   for (const auto& l : field.lines) {
     FieldLineElement e;
-    e.a = l.p1, e.b = l.p2, e.half_thickness = l.thickness / 2;
+    e.a = l.p1, e.b = l.p2, e.half_thickness = l.thickness / 2, e.name = l.name;
     if (std::hypot(e.b.x - e.a.x, e.b.y - e.a.y) > 1e-6) elements_.push_back(e);
   }
   for (const auto& arc : field.arcs) {
@@ -39,6 +39,7 @@ FieldLineModel::FieldLineModel(const FieldModel& field) {
     e.is_arc = true;
     e.center = arc.center, e.radius = arc.radius, e.a1 = arc.a1, e.a2 = arc.a2;
     e.half_thickness = arc.thickness / 2;
+    e.name = arc.name;
     if (arc.radius > 0) elements_.push_back(e);
   }
 }

@@ -2,6 +2,7 @@
 // The painted field lines as geometric elements (segments and arcs on z = 0)
 // with the distance queries calibration needs.
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/units.h"
@@ -16,6 +17,7 @@ struct FieldLineElement {
   double radius = 0;       // arc, to the line center
   double a1 = 0, a2 = 0;   // arc angles
   double half_thickness = 5;
+  std::string name;        // the field file's name of the line or arc
 
   // Distance from p to the element's center line (clamped to its extent).
   double distance(FieldMm p) const;

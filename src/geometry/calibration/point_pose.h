@@ -5,6 +5,7 @@
 // line-based intrinsic step held fixed. The camera height is fixed when given,
 // as a camera looking straight down cannot observe it (§5.1.3).
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/units.h"
@@ -27,6 +28,12 @@ struct PointPoseResult {
   CameraParams params;
   double rms_px = 0;  // reprojection error over the points
 };
+
+// Why the points cannot fix a pose, or nullopt: a field point given twice,
+// points bunched together in the image, or no four of them off one line
+// (on the field or in the image). `width`/`height`: the image size.
+std::optional<std::string> pointSetProblem(const std::vector<PointCorrespondence>& points, int width,
+                                           int height);
 
 // Empty when no start value converges in front of the camera.
 std::optional<PointPoseResult> solvePointPose(const std::vector<PointCorrespondence>& points,
