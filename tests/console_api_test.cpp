@@ -97,13 +97,16 @@ TEST_F(ConsoleApi, StatusCamerasDetectionsAndGeometry) {
   EXPECT_NEAR(x_max, 750, 300);
 
   // Detections come once asked for: the scene's robots in camera 0.
-  json cam0;
-  EXPECT_TRUE(ConsoleServe::waitFor([&] {
-    const json d = getJson("/api/detections");
-    if (d.is_null() || d["cameras"].size() != 2) return false;
-    cam0 = d["cameras"][0];
-    return !cam0["detection"].is_null();
-  }));
+  json cam0, last;
+  ASSERT_TRUE(ConsoleServe::waitFor(
+      [&] {
+        last = getJson("/api/detections");
+        if (!last.is_object() || last["cameras"].size() != 2) return false;
+        cam0 = last["cameras"][0];
+        return !cam0["detection"].is_null();
+      },
+      120))
+      << last.dump() << serve_->log();
   EXPECT_EQ(cam0["camera_id"], 0);
   const json& d = cam0["detection"];
   const size_t robots = d.value("robotsYellow", json::array()).size() + d.value("robotsBlue", json::array()).size();
