@@ -84,7 +84,12 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   std::string why;
   if (!processor_->process(frame, detections_, why)) {
     // Wrong size or format: counted; the first of a run is reported.
-    if (skipped_frames_++ == 0)
+    uint64_t n;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      n = ++rejected_frames_;
+    }
+    if (n == 1)
       log_("camera " + std::to_string(calibration_.camera_id) + ": skipped " + frame.name + ": " + why);
     return;
   }
@@ -162,6 +167,11 @@ CameraStatus CameraRunner::status() {
     s.separation_orange_field = separations_.orange_field;
     s.robot_height_yellow = heights_[0];
     s.robot_height_blue = heights_[1];
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    s.counters.skipped += rejected_frames_;  // frames the pipeline refused (wrong size or format)
+    s.counters.processed -= std::min(s.counters.processed, rejected_frames_);
   }
   if (!failure_.empty()) s.counters.last_problem = failure_;
   s.health_changed = health_.update(s);

@@ -67,8 +67,8 @@ class CameraRunner {
   std::string failure_;  // the processor could not be built: why
   Detections detections_;
   ssl::SSL_WrapperPacket packet_;
-  uint64_t skipped_frames_ = 0;
   bool warmed_up_ = false;
+  uint64_t rejected_frames_ = 0;  // guarded by mutex_ (status() reads it)
 
   mutable std::mutex mutex_;  // guards what status() reads
   std::optional<DetectorOptions> pending_options_;
