@@ -112,6 +112,9 @@ class FakeGigeCamera {
   const std::string& serial() const { return serial_; }
   std::string deviceId() const { return "Aravis-Fake-" + serial_; }
   uint32_t framesWritten() const { return seq_.load(); }
+  // Streams these images (one byte per pixel, the camera's size) in turn
+  // instead of the pattern; call before anyone opens the stream.
+  void streamImages(std::vector<std::vector<uint8_t>> images) { images_ = std::move(images); }
   static bool gvcpPortFree() {
     const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
     if (fd < 0) return false;
@@ -144,6 +147,10 @@ class FakeGigeCamera {
                      ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format) / 8;
     auto* data = static_cast<uint8_t*>(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)));
     const uint32_t seq = ++self->seq_;
+    if (!self->images_.empty()) {
+      const std::vector<uint8_t>& img = self->images_[(seq - 1) % self->images_.size()];
+      if (img.size() == n) return static_cast<void>(std::memcpy(data, img.data(), n));
+    }
     if (!self->cheap_fill_) return fakePattern(data, n, seq);
     if (self->fixed_.size() != n) {
       self->fixed_.resize(n);
@@ -158,6 +165,7 @@ class FakeGigeCamera {
   bool cheap_fill_;
   std::string genicam_file_;
   std::vector<uint8_t> fixed_;  // the cheap fill's frame (fake camera thread only)
+  std::vector<std::vector<uint8_t>> images_;  // streamImages
   int lock_fd_ = -1;
   ArvGvFakeCamera* camera_ = nullptr;
   std::atomic<uint32_t> seq_{0};

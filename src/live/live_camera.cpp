@@ -45,8 +45,11 @@ void LiveCamera::start() {
 void LiveCamera::stop() {
   stop_ = true;
   if (source_) source_->interrupt();
-  slot_.close();
+  // The capture thread closes the slot as it ends, after its last put, so
+  // the processing thread takes that frame too: every frame delivered is
+  // either processed or counted as dropped.
   if (capture_.joinable()) capture_.join();
+  slot_.close();
   if (processing_.joinable()) processing_.join();
   std::lock_guard<std::mutex> lock(mutex_);
   if (counters_.state != SourceState::Ended) counters_.state = SourceState::Stopped;
