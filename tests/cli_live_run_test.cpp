@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "dotvision/ssl_wrapper.pb.h"
@@ -83,6 +84,20 @@ TEST(RunLive, RealtimeReplayKeepsTheSpacingInUnixTimeAndReportsLatency) {
     ++n;
   }
   EXPECT_GE(n, 9);  // a frame or two may be dropped while the processor starts
+
+  // A calibration for another image size: every frame is refused, and the
+  // health says so with the reason instead of staying silent.
+  nlohmann::json g = nlohmann::json::parse(readAll(dir.file("geometry.json")));
+  g["calib"][0]["pixelImageWidth"] = 2000;
+  std::ofstream(dir.file("other_size.json")) << g.dump();
+  const pid_t bad = spawnCli({"run", "--source", dir.path().string(), "--geometry", dir.file("other_size.json"),
+                              "--camera-id", "0", "--realtime", "--no-publish", "--status-interval", "0.1"},
+                             dir.file("bad.txt"));
+  EXPECT_EQ(waitExit(bad), 1);
+  const std::string bad_out = readAll(dir.file("bad.txt"));
+  EXPECT_NE(bad_out.find("lost: no frame could be processed"), std::string::npos) << bad_out;
+  EXPECT_NE(bad_out.find("calibration expects 2000x"), std::string::npos) << bad_out;
+  EXPECT_NE(bad_out.find("0 processed"), std::string::npos) << bad_out;
 }
 
 }  // namespace

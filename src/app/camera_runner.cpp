@@ -45,7 +45,7 @@ void CameraRunner::setDetectorOptions(const DetectorOptions& o) {
 }
 
 void CameraRunner::onFrame(Frame& frame, double t_taken) {
-  if (!failure_.empty()) return;
+  if (failed_) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (pending_options_) {
@@ -73,7 +73,11 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
     try {
       processor_.emplace(c, field_, o);
     } catch (const std::exception& e) {
-      failure_ = e.what();
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        failure_ = e.what();
+      }
+      failed_ = true;
       log_("camera " + std::to_string(calibration_.camera_id) + ": cannot process its frames: " + failure_);
       return;
     }
@@ -88,6 +92,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       n = ++rejected_frames_;
+      if (n == 1) rejected_why_ = frame.name + ": " + why;
     }
     if (n == 1)
       log_("camera " + std::to_string(calibration_.camera_id) + ": skipped " + frame.name + ": " + why);
@@ -172,8 +177,16 @@ CameraStatus CameraRunner::status() {
     std::lock_guard<std::mutex> lock(mutex_);
     s.counters.skipped += rejected_frames_;  // frames the pipeline refused (wrong size or format)
     s.counters.processed -= std::min(s.counters.processed, rejected_frames_);
+    if (rejected_frames_ > 0 && s.counters.last_problem.empty()) s.counters.last_problem = rejected_why_;
   }
-  if (!failure_.empty()) s.counters.last_problem = failure_;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!failure_.empty()) {  // the processor could not be built: every frame is refused
+      s.counters.last_problem = failure_;
+      s.counters.skipped += s.counters.processed;
+      s.counters.processed = 0;
+    }
+  }
   s.health_changed = health_.update(s);
   if (s.health_changed)
     log_("camera " + std::to_string(s.camera_id) + ": health " + healthName(s.health) +

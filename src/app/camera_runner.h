@@ -52,7 +52,10 @@ class CameraRunner {
     std::vector<double> total_ms, pipeline_ms, detection_ms;
   };
   Times times() const;
-  const std::string& failure() const { return failure_; }
+  std::string failure() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return failure_;
+  }
 
  private:
   void onFrame(Frame& frame, double t_taken);
@@ -64,11 +67,13 @@ class CameraRunner {
   LogFn log_;
   std::vector<FrameHook> hooks_;  // the raw ring, the console's feed
   std::optional<CameraProcessor> processor_;
-  std::string failure_;  // the processor could not be built: why
+  std::string failure_;  // the processor could not be built: why (guarded by mutex_)
+  bool failed_ = false;  // the same, for the processing thread alone
   Detections detections_;
   ssl::SSL_WrapperPacket packet_;
   bool warmed_up_ = false;
   uint64_t rejected_frames_ = 0;  // guarded by mutex_ (status() reads it)
+  std::string rejected_why_;      // the first refusal, for the status
 
   mutable std::mutex mutex_;  // guards what status() reads
   std::optional<DetectorOptions> pending_options_;

@@ -28,6 +28,8 @@ bool HealthMonitor::update(CameraStatus& s) {
     h = Health::Lost, kind = "lost", reason = "camera lost: " + c.last_problem;
   } else if (c.state == SourceState::NoFrames || (c.state == SourceState::Starting && c.frames_in == 0)) {
     h = Health::Lost, kind = "no frames", reason = "no frames from the camera";
+  } else if (c.processed == 0 && c.skipped > 0) {
+    h = Health::Lost, kind = "refused", reason = "no frame could be processed: " + c.last_problem;
   } else if (c.processed == 0) {
     // Starting: the first frame builds the processor.
   } else if (s.fps_in > 0 && s.fps_out == 0) {
