@@ -243,7 +243,10 @@ TEST_F(ServeLive, ABadCameraIsReportedAndTheOthersRunWithTheGeometryPublished) {
     ssl::SSL_WrapperPacket p;
     if (!p.ParseFromString(payload)) continue;
     if (p.has_geometry() && p.geometry().calib_size() >= 1) geometry = true;
-    if (p.has_detection() && p.detection().camera_id() == 0) detection = true;
+    if (p.has_detection() && p.detection().camera_id() == 0) {
+      detection = true;
+      EXPECT_TRUE(p.detection().has_t_capture_camera());  // the camera's own clock rides along
+    }
   }
   EXPECT_TRUE(geometry);
   EXPECT_TRUE(detection);

@@ -102,6 +102,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   stamp.camera_id = calibration_.camera_id;
   stamp.frame_number = frame.index;
   stamp.t_capture = frame.t_capture;
+  stamp.t_capture_camera = frame.t_capture_camera;
   stamp.t_sent = unixSeconds();
   fillDetectionPacket(detections_, stamp, packet_);
   outputs_.detection(packet_);

@@ -23,6 +23,7 @@ void fillDetectionFrame(const Detections& detections, const FrameStamp& stamp,
   out.set_frame_number(stamp.frame_number);
   out.set_t_capture(stamp.t_capture);
   out.set_t_sent(stamp.t_sent);
+  if (stamp.t_capture_camera >= 0) out.set_t_capture_camera(stamp.t_capture_camera);
   out.set_camera_id(stamp.camera_id);
   for (const BallDetection& b : detections.balls) {
     ssl::SSL_DetectionBall* ball = out.add_balls();

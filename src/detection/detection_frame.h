@@ -11,8 +11,9 @@ namespace dv {
 struct FrameStamp {
   uint32_t camera_id = 0;
   uint32_t frame_number = 0;  // per camera, counting from 0
-  double t_capture = 0;       // s
-  double t_sent = 0;          // s
+  double t_capture = 0;       // Unix s, end of exposure
+  double t_sent = 0;          // Unix s
+  double t_capture_camera = -1;  // s on the camera's own clock; < 0: none (left out of the packet)
 };
 
 // Clears `out` (keeping its storage) and fills every required field plus
