@@ -151,6 +151,12 @@ TEST_F(ServeLive, RefereeTeamsReloadAndStopAllTakeEffectWhileRunning) {
                                        "  blue: 135\n");
   ::kill(pid_, SIGHUP);
   EXPECT_TRUE(waitForHeights(rx, 150, 135));
+  // A new vision port: the packets move there without a restart.
+  MulticastReceiver moved("224.5.23.2", static_cast<uint16_t>(vision_port_ + 500), "127.0.0.1");
+  std::ofstream(config_) << siteConfig(dir_.file("scene.yaml"), vision_port_ + 500, referee_port_, 130,
+                                       "  blue: 135\n");
+  ::kill(pid_, SIGHUP);
+  EXPECT_TRUE(waitForHeights(moved, 150, 135));
 
   ::kill(pid_, SIGTERM);
   EXPECT_EQ(waitExit(pid_), 0);
