@@ -62,7 +62,13 @@ class ConsoleApi : public ::testing::Test {
     });
     return s;
   }
-  static double heightInUse() { return getJson("/api/status")["cameras"][0]["robot_height_mm"]["yellow"]; }
+  // -1 while the status cannot be had (a request timing out on a loaded machine).
+  static double heightInUse() {
+    const json s = getJson("/api/status");
+    if (!s.is_object() || !s.contains("cameras") || s["cameras"].empty()) return -1;
+    const json& h = s["cameras"][0]["robot_height_mm"]["yellow"];
+    return h.is_number() ? h.get<double>() : -1;
+  }
 
   static ConsoleServe* serve_;
   static bool started_;

@@ -3,7 +3,11 @@
 // robots the cameras report, the camera page loads frames of the size it
 // asked for, and a robot height changed on the settings page is refused
 // with a wrong token and, with the printed one, reaches the processors and
-// the config file. Screenshots go to <build>/test_artifacts/console/.
+// the config file; the calibration page runs a calibration and shows its
+// verdict, figures and overlay, and accepting it changes the geometry; the
+// colors page draws the learned classes and recent blobs; the status page
+// shows serve's log, never the token. Screenshots go to
+// <build>/test_artifacts/console/.
 // Skipped, saying why, where chromium or chromedriver is not installed.
 #include <gtest/gtest.h>
 
@@ -137,6 +141,56 @@ TEST_F(ConsoleBrowser, HeightSetOnTheSettingsPageReachesTheProcessorAndTheFile) 
   // The page shows the new value, read back from the server.
   EXPECT_TRUE(d.waitUntil("return document.getElementById('robot_heights.default').value == '133'"));
   EXPECT_TRUE(d.screenshot(kArtifacts + "settings.png"));
+}
+
+TEST_F(ConsoleBrowser, CalibrationPageRunsAndShowsAResult) {
+  WebDriver& d = *driver_;
+  const json before = apiJson("/api/geometry");
+  d.navigate(serve_->url("/calibration.html?camera=0#token=" + serve_->printedToken()));
+  ASSERT_TRUE(d.waitUntil("return document.getElementById('state').dataset.state == 'none'"))
+      << d.execute("return document.body.innerText");
+  d.execute("document.getElementById('region').value = 'x<0'; document.getElementById('height').value = '5000'");
+  d.click(d.find("#run"));
+  ASSERT_TRUE(d.waitUntil("return document.getElementById('state').dataset.state == 'done'", 300))
+      << d.execute("return document.body.innerText");
+  const std::string figures = d.execute("return document.getElementById('figures').innerText");
+  EXPECT_NE(figures.find("passed"), std::string::npos) << figures;
+  EXPECT_NE(figures.find("overlap ratio"), std::string::npos) << figures;
+  // The overlay of the frame calibrated, 960 px wide at most.
+  ASSERT_TRUE(d.waitUntil("const i = document.getElementById('image'); "
+                          "return i.complete && i.naturalWidth > 0 && i.src.includes('/calibration/overlay.jpg')"));
+  EXPECT_EQ(d.execute("return document.getElementById('image').naturalWidth"), 960);
+  EXPECT_EQ(d.execute("return document.getElementById('accept').disabled"), false);
+  EXPECT_TRUE(d.screenshot(kArtifacts + "calibration.png"));
+  d.click(d.find("#accept"));
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('state').dataset.state == 'accepted'"))
+      << d.execute("return document.getElementById('notes').textContent");
+  EXPECT_NE(apiJson("/api/geometry"), before);
+  EXPECT_TRUE(d.screenshot(kArtifacts + "calibration_accepted.png"));
+}
+
+TEST_F(ConsoleBrowser, ColorsPageDrawsTheClassesAndRecentBlobs) {
+  WebDriver& d = *driver_;
+  d.navigate(serve_->url("/colors.html"));
+  EXPECT_TRUE(d.waitUntil("return document.querySelectorAll('#chroma .class-ring').length == 7 && "
+                          "document.querySelectorAll('#chroma .blob-dot').length > 20"))
+      << d.execute("return document.body.innerText");
+  EXPECT_NE(d.execute("return document.getElementById('separations').textContent").get<std::string>().find("yellow–blue"),
+            std::string::npos);
+  EXPECT_TRUE(d.screenshot(kArtifacts + "colors.png"));
+}
+
+TEST_F(ConsoleBrowser, StatusPageShowsTheLogButNotTheToken) {
+  WebDriver& d = *driver_;
+  d.navigate(serve_->url("/status.html"));
+  d.execute("document.getElementById('warnings-only').click()");  // every line, not only the warnings
+  EXPECT_TRUE(d.waitUntil("return document.getElementById('log').innerText.includes('running 2 camera(s)')"))
+      << d.execute("return document.getElementById('log').innerText");
+  ASSERT_FALSE(serve_->printedToken().empty());
+  EXPECT_EQ(d.execute("return document.body.innerText").get<std::string>().find(serve_->printedToken()),
+            std::string::npos);
+  EXPECT_EQ(apiJson("/api/log").dump().find(serve_->printedToken()), std::string::npos);
+  EXPECT_TRUE(d.screenshot(kArtifacts + "status_log.png"));
 }
 
 }  // namespace

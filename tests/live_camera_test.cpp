@@ -252,10 +252,19 @@ TEST(HealthMonitor, ALostCameraAndProcessingBehindAreNamed) {
   EXPECT_EQ(s.health, Health::Lost);
   EXPECT_NE(s.health_reason.find("link down"), std::string::npos);
   s = statusWith(5, 5);
-  s.fps_out = 20;
+  s.counters.frames_in = 160;  // 60 more frames, 40 of them dropped
+  s.counters.dropped = 40;
   EXPECT_TRUE(h.update(s));
   EXPECT_EQ(s.health, Health::Degraded);
-  EXPECT_NE(s.health_reason.find("20 of 60"), std::string::npos) << s.health_reason;
+  EXPECT_NE(s.health_reason.find("40 of 60 frames dropped"), std::string::npos) << s.health_reason;
+  // One frame in flight on a slow camera (3 in, 2 out, none dropped) is no backlog.
+  s = statusWith(5, 5);
+  s.counters.frames_in = 163;
+  s.counters.dropped = 40;
+  s.fps_in = 3;
+  s.fps_out = 2;
+  h.update(s);
+  EXPECT_EQ(s.health, Health::Ok) << s.health_reason;
 }
 
 TEST(HealthMonitor, AFieldWithOneTeamOnlyIsHealthy) {

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "app/camera_processor.h"
+
 namespace dv::app {
 
 namespace {
@@ -12,7 +14,23 @@ int64_t steadyMs() {
 constexpr int64_t kDetectionsWantedMs = 3000;
 }  // namespace
 
-void CameraFeed::onFrame(const Frame& frame, const ssl::SSL_WrapperPacket& packet) {
+void CameraFeed::onFrame(const Frame& frame, const ssl::SSL_WrapperPacket& packet, const CameraProcessor* processor) {
+  if (processor && colors_wanted_until_ms_.load(std::memory_order_relaxed) > steadyMs()) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (colors_.blobs.capacity() < kBlobRing) colors_.blobs.reserve(kBlobRing);  // once
+    processor->detector().classColors(colors_.classes);
+    colors_.separations = processor->detector().colorSeparations();
+    for (const Blob& b : processor->blobs().blobs) {
+      const BlobColor c{colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]), b.score};
+      if (colors_.blobs.size() < kBlobRing) {
+        colors_.blobs.push_back(c);
+      } else {
+        colors_.blobs[ring_next_] = c;
+        ring_next_ = (ring_next_ + 1) % kBlobRing;
+      }
+    }
+    have_colors_ = true;
+  }
   const bool want_snapshot = snapshot_waiters_.load(std::memory_order_relaxed) > 0;
   const bool want_detection =
       want_snapshot || detections_wanted_until_ms_.load(std::memory_order_relaxed) > steadyMs();
@@ -59,6 +77,19 @@ bool CameraFeed::snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFram
   frame.t_arrival = frame_.t_arrival;
   frame.index = frame_.index;
   detection.CopyFrom(frame_detection_);
+  return true;
+}
+
+bool CameraFeed::colors(Colors& out) {
+  colors_wanted_until_ms_.store(steadyMs() + kDetectionsWantedMs, std::memory_order_relaxed);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!have_colors_) return false;
+  for (int i = 0; i < Detector::kClassColorCount; ++i) out.classes[i] = colors_.classes[i];
+  out.separations = colors_.separations;
+  // Oldest first: the ring from where the next one goes.
+  const size_t n = colors_.blobs.size();
+  out.blobs.clear();
+  for (size_t i = 0; i < n; ++i) out.blobs.push_back(colors_.blobs[(ring_next_ + i) % n]);
   return true;
 }
 

@@ -44,10 +44,22 @@ void CameraRunner::setDetectorOptions(const DetectorOptions& o) {
   pending_options_ = o;
 }
 
+void CameraRunner::setCalibration(const CameraCalibration& c) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  pending_calibration_ = c;
+}
+
 void CameraRunner::onFrame(Frame& frame, double t_taken) {
   if (failed_) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (pending_calibration_) {
+      if (processor_) previous_calibration_ = calibration_;
+      calibration_ = *pending_calibration_;
+      pending_calibration_.reset();
+      processor_.reset();   // rebuilt below with the new calibration
+      warmed_up_ = false;   // that rebuild is a start-up cost, not a latency
+    }
     if (pending_options_) {
       options_.detector = *pending_options_;
       pending_options_.reset();
@@ -73,6 +85,12 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
     try {
       processor_.emplace(c, field_, o);
     } catch (const std::exception& e) {
+      if (previous_calibration_) {  // a new calibration it cannot work with: keep the one that worked
+        log_("camera " + std::to_string(calibration_.camera_id) + ": the new calibration is refused: " + e.what());
+        calibration_ = *previous_calibration_;
+        previous_calibration_.reset();
+        return;  // rebuilt with the old one at the next frame
+      }
       {
         std::lock_guard<std::mutex> lock(mutex_);
         failure_ = e.what();
@@ -82,6 +100,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
       return;
     }
     log_("camera " + std::to_string(calibration_.camera_id) + ": " + processor_->pipeline().samplingNote());
+    previous_calibration_.reset();
     std::lock_guard<std::mutex> lock(mutex_);
     backend_ = processor_->pipeline().name();
   }

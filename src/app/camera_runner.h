@@ -42,9 +42,15 @@ class CameraRunner {
   CameraStatus status();
   // Applied before the next frame; invalid options are logged and ignored.
   void setDetectorOptions(const DetectorOptions& o);
+  // A new calibration (accepted on the console): the processor is rebuilt
+  // with it before the next frame (the tracks start over).
+  void setCalibration(const CameraCalibration& c);
   // Hooks run in the order added; add them before start().
   void addFrameHook(FrameHook hook) { hooks_.push_back(std::move(hook)); }
   uint32_t cameraId() const { return calibration_.camera_id; }
+  // The processor of the frame just done: only for frame hooks, which run on
+  // the processing thread (null before the first frame).
+  const CameraProcessor* processorInHook() const { return processor_ ? &*processor_ : nullptr; }
   CameraSource& source() { return camera_.source(); }
   // Every frame's total latency (arrival -> sent, ms) and stage times, for
   // the summary; reserved up front, so recording them does not allocate.
@@ -77,6 +83,8 @@ class CameraRunner {
 
   mutable std::mutex mutex_;  // guards what status() reads
   std::optional<DetectorOptions> pending_options_;
+  std::optional<CameraCalibration> pending_calibration_;
+  std::optional<CameraCalibration> previous_calibration_;  // processing thread only
   LatencyWindow wait_, pipeline_, detection_, total_;
   Times times_;
   struct PerSecond {  // sums since the last status()

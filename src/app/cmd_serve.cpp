@@ -18,6 +18,7 @@
 
 #include "app/commands.h"
 #include "app/console_server.h"
+#include "app/log_ring.h"
 #include "app/serve_status.h"
 #include "app/signals.h"
 #include "app/site_config.h"
@@ -70,7 +71,13 @@ int serve(const ServeArgs& a) {
     return kExitOk;
   }
   std::fflush(stdout);
-  SiteRuntime runtime(config, logLine);
+  // Every line also kept in memory for the console's Status page.
+  auto ring = std::make_shared<LogRing>();
+  const auto log = [ring](const std::string& line) {
+    logLine(line);
+    ring->add(line);
+  };
+  SiteRuntime runtime(config, log);
 
   std::unique_ptr<RefereeListener> referee;
   if (config.network.referee) {
@@ -81,21 +88,22 @@ int serve(const ServeArgs& a) {
     try {
       referee = std::make_unique<RefereeListener>(ro);
     } catch (const InputError& e) {
-      logLine(std::string("not listening to the game controller: ") + e.what());
+      log(std::string("not listening to the game controller: ") + e.what());
     }
   }
   // The console hooks into the cameras before they start.
-  std::unique_ptr<ConsoleServer> console = makeConsole(runtime, a.http_given ? &a.http : nullptr, logLine);
+  std::unique_ptr<ConsoleServer> console = makeConsole(runtime, a.http_given ? &a.http : nullptr, log, ring);
   runtime.start();
   if (console) {
     console->start();
     if (runtime.config().console.token_file.empty())
+      // Terminal only: the log kept for the console is readable without the token.
       logLine("console: " + console->url() + "#token=" + console->token() + " (changes need the token " +
               console->token() + ")");
     else
-      logLine("console: " + console->url() + " (changes need the token in " + runtime.config().console.token_file + ")");
+      log("console: " + console->url() + " (changes need the token in " + runtime.config().console.token_file + ")");
   }
-  logLine("running " + std::to_string(runtime.cameraCount()) + " camera(s); SIGHUP reloads " + a.config);
+  log("running " + std::to_string(runtime.cameraCount()) + " camera(s); SIGHUP reloads " + a.config);
 
   using Clock = std::chrono::steady_clock;
   const auto started = Clock::now();
@@ -110,19 +118,19 @@ int serve(const ServeArgs& a) {
     if (referee && referee->changeCount() != referee_seen) {
       teams = referee->snapshot();
       referee_seen = teams.changes;
-      logLine("game controller: yellow '" + teams.yellow_name + "', blue '" + teams.blue_name + "'");
+      log("game controller: yellow '" + teams.yellow_name + "', blue '" + teams.blue_name + "'");
       runtime.setReferee(teams);
     }
     if (takeDumpRequest() && !runtime.dumpRaw("SIGUSR1"))
-      logLine("no raw frames to write (set record.raw_dir or --record-raw) or a dump is still being written");
+      log("no raw frames to write (set record.raw_dir or --record-raw) or a dump is still being written");
     if (console) console->service(runtime);
     if (takeReloadRequest()) {
       try {
         SiteConfig next = loadSiteConfig(a.config);
         if (!a.record_raw.empty()) next.record.raw_dir = a.record_raw;
-        for (const std::string& note : runtime.reload(next)) logLine("reload: " + note);
+        for (const std::string& note : runtime.reload(next)) log("reload: " + note);
       } catch (const InputError& e) {
-        logLine(std::string("reload refused, the running config stays: ") + e.what());
+        log(std::string("reload refused, the running config stays: ") + e.what());
       }
     }
     const auto now = Clock::now();

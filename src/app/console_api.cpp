@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/config_edit.h"
+#include "app/console_http.h"
 #include "app/console_image.h"
 #include "app/console_state.h"
 #include "core/error.h"
@@ -20,38 +21,6 @@ namespace dv::app {
 namespace {
 
 using nlohmann::json;
-
-void sendJson(httplib::Response& res, const json& j, int status = 200) {
-  res.status = status;
-  res.set_header("Cache-Control", "no-store");
-  res.set_content(j.dump(), "application/json");
-}
-
-void sendError(httplib::Response& res, int status, const std::string& what) { sendJson(res, {{"error", what}}, status); }
-
-// A query parameter as a number in [lo, hi], else `fallback`; false (and a
-// 400 sent) when it is given but not such a number.
-bool numberParam(const httplib::Request& req, httplib::Response& res, const char* name, double lo, double hi,
-                 double& value) {
-  if (!req.has_param(name)) return true;
-  const std::string text = req.get_param_value(name);
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi) {
-    sendError(res, 400, std::string("parameter '") + name + "': expected a number in " + std::to_string(lo) +
-                            ".." + std::to_string(hi) + ", got '" + text + "'");
-    return false;
-  }
-  value = v;
-  return true;
-}
-
-CameraFeed* cameraOf(ConsoleState& state, const httplib::Request& req, httplib::Response& res) {
-  const unsigned long id = std::stoul(req.matches[1].str());
-  CameraFeed* feed = id <= 255 ? state.feed(uint32_t(id)) : nullptr;
-  if (!feed) sendError(res, 404, "no camera " + req.matches[1].str() + " runs here");
-  return feed;
-}
 
 json detectionJson(const ssl::SSL_DetectionFrame& d) { return json::parse(toCanonicalJson(d)); }
 
@@ -123,6 +92,9 @@ void applyConfigText(ConsoleState& state, const httplib::Request& req, httplib::
 }  // namespace
 
 void addConsoleApi(httplib::Server& server, ConsoleState& state) {
+  addCalibrationApi(server, state);
+  addLogApi(server, state);
+  addColorsApi(server, state);
   server.Get("/api/status", [&state](const httplib::Request&, httplib::Response& res) {
     sendJson(res, state.status());
   });
@@ -135,9 +107,10 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
   // The cameras this process runs: image size and footprint on the field.
   server.Get("/api/cameras", [&state](const httplib::Request&, httplib::Response& res) {
     json cams = json::array();
+    const Geometry geometry = state.geometry();
     for (const auto& f : state.feeds()) {
       json c = {{"camera_id", f->cameraId()}};
-      if (const CameraCalibration* cal = state.geometry().camera(f->cameraId())) {
+      if (const CameraCalibration* cal = geometry.camera(f->cameraId())) {
         c["image_width"] = cal->image_width;
         c["image_height"] = cal->image_height;
         json fp = json::array();
@@ -172,8 +145,9 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
     bool fresh = false;
     if (!feed->snapshot(2.0, frame, detection, fresh))
       return sendError(res, 503, "camera " + std::to_string(feed->cameraId()) + " has processed no frame yet");
-    const cv::Mat img = renderSnapshot(frame, detection, state.geometry().camera(feed->cameraId()),
-                                       state.geometry().field, *layers, static_cast<int>(width));
+    const Geometry geometry = state.geometry();
+    const cv::Mat img = renderSnapshot(frame, detection, geometry.camera(feed->cameraId()), geometry.field, *layers,
+                                       static_cast<int>(width));
     const bool png = req.matches[2].str() == "png";
     std::vector<uchar> bytes;
     if (!cv::imencode(png ? ".png" : ".jpg", img, bytes, png ? std::vector<int>{} :
@@ -191,7 +165,8 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
   server.Get(R"(/api/cameras/(\d+)/field_point)", [&state](const httplib::Request& req, httplib::Response& res) {
     CameraFeed* feed = cameraOf(state, req, res);
     if (!feed) return;
-    const CameraCalibration* cal = state.geometry().camera(feed->cameraId());
+    const Geometry geometry = state.geometry();
+    const CameraCalibration* cal = geometry.camera(feed->cameraId());
     if (!cal) return sendError(res, 404, "camera " + std::to_string(feed->cameraId()) + " has no calibration");
     double u = 0, v = 0, z = 0;
     if (!req.has_param("u") || !req.has_param("v")) return sendError(res, 400, "give the pixel as ?u=..&v=..");

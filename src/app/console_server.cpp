@@ -68,11 +68,14 @@ ConsoleServer::ConsoleServer(SiteRuntime& runtime, const std::string& config_tex
       host_(options.host),
       token_(options.token.empty() ? randomToken() : options.token),
       log_(std::move(log)) {
+  state_->setLogRing(options.log_ring);
   for (size_t i = 0; i < runtime.cameraCount(); ++i) {
     // The hook holds the feed, so it outlives the console if the cameras do.
     std::shared_ptr<CameraFeed> feed = state_->sharedFeed(runtime.runner(i).cameraId());
-    runtime.runner(i).addFrameHook(
-        [feed](const Frame& f, const ssl::SSL_WrapperPacket& p) { feed->onFrame(f, p); });
+    CameraRunner* runner = &runtime.runner(i);  // the hook runs on its thread, while it lives
+    runner->addFrameHook([feed, runner](const Frame& f, const ssl::SSL_WrapperPacket& p) {
+      feed->onFrame(f, p, runner->processorInHook());
+    });
   }
   server_->set_payload_max_length(1 << 20);
   // Changing something needs the token; reading does not.
@@ -119,11 +122,13 @@ ConsoleServer::ConsoleServer(SiteRuntime& runtime, const std::string& config_tex
 }
 
 std::unique_ptr<ConsoleServer> makeConsole(SiteRuntime& runtime, const std::string* http_override,
-                                           std::function<void(const std::string&)> log) {
+                                           std::function<void(const std::string&)> log,
+                                           std::shared_ptr<const LogRing> log_ring) {
   const SiteConfig& config = runtime.config();
   const std::string http = http_override ? *http_override : config.console.http;
   if (http.empty()) return nullptr;
   ConsoleOptions o;
+  o.log_ring = std::move(log_ring);
   if (!splitListenAddress(http, o.host, o.port))
     throw InputError("--http", "expected IPv4ADDR:PORT (e.g. 127.0.0.1:8080), or \"\" for no console, got '" + http + "'");
   if (!config.console.token_file.empty()) o.token = readTokenFile(config.console.token_file);

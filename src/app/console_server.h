@@ -19,12 +19,14 @@ class Server;
 namespace dv::app {
 
 class ConsoleState;
+class LogRing;
 class SiteRuntime;
 
 struct ConsoleOptions {
   std::string host = "127.0.0.1";
   uint16_t port = 8080;  // 0: any free port
   std::string token;     // "": a random one
+  std::shared_ptr<const LogRing> log_ring;  // serve's recent lines, for the Status page
 };
 
 // The first line of a token file, blanks trimmed. Throws InputError(path, ...)
@@ -39,7 +41,8 @@ class ConsoleServer;
 // logged and left out (the cameras matter more); a token file that cannot
 // be read throws InputError.
 std::unique_ptr<ConsoleServer> makeConsole(SiteRuntime& runtime, const std::string* http_override,
-                                           std::function<void(const std::string&)> log);
+                                           std::function<void(const std::string&)> log,
+                                           std::shared_ptr<const LogRing> log_ring = nullptr);
 
 class ConsoleServer {
  public:

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "app/site_runtime.h"
+#include "core/error.h"
 
 namespace dv::app {
 
@@ -45,22 +46,52 @@ SiteConfig ConsoleState::config() const {
   return config_;
 }
 
-ConsoleState::ReloadResult ConsoleState::reload(const SiteConfig& next, const std::string& text, double timeout_s) {
+Geometry ConsoleState::geometry() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return geometry_;
+}
+
+void ConsoleState::setCameraCalibration(const CameraCalibration& c) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (CameraCalibration& old : geometry_.cameras)
+    if (old.camera_id == c.camera_id) old = c;
+}
+
+ConsoleState::TaskResult ConsoleState::onMainLoop(Task task, double timeout_s) {
   auto job = std::make_shared<Job>();
-  job->config = next;
-  job->text = text;
+  job->task = std::move(task);
   std::future<std::vector<std::string>> done = job->notes.get_future();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     jobs_.push_back(job);
   }
-  ReloadResult r;
+  TaskResult r;
   if (done.wait_for(std::chrono::duration<double>(timeout_s)) != std::future_status::ready) return r;
   try {
     r.notes = done.get();
     r.applied = true;
+  } catch (const InputError& e) {
+    r.applied = true;
+    r.error = e.what();
   } catch (const std::future_error&) {  // serve stopped before taking it
   }
+  return r;
+}
+
+ConsoleState::ReloadResult ConsoleState::reload(const SiteConfig& next, const std::string& text, double timeout_s) {
+  const TaskResult r = onMainLoop(
+      [this, next, text](SiteRuntime& runtime) {
+        std::vector<std::string> notes = runtime.reload(next);
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (next.console.http != config_.console.http || next.console.token_file != config_.console.token_file)
+          notes.push_back("console settings (http, token_file) take effect when serve restarts");
+        const SiteConsole console = config_.console;  // the console running is the one started
+        config_ = next;
+        config_.console = console;
+        config_text_ = text;
+        return notes;
+      },
+      timeout_s);
   return r;
 }
 
@@ -73,18 +104,11 @@ void ConsoleState::service(SiteRuntime& runtime) {
       job = jobs_.front();
       jobs_.pop_front();
     }
-    std::vector<std::string> notes = runtime.reload(job->config);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (job->config.console.http != config_.console.http ||
-          job->config.console.token_file != config_.console.token_file)
-        notes.push_back("console settings (http, token_file) take effect when serve restarts");
-      const SiteConsole console = config_.console;  // the console running is the one started
-      config_ = job->config;
-      config_.console = console;
-      config_text_ = job->text;
+    try {
+      job->notes.set_value(job->task(runtime));
+    } catch (const InputError&) {
+      job->notes.set_exception(std::current_exception());
     }
-    job->notes.set_value(std::move(notes));
   }
 }
 

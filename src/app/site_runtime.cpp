@@ -197,9 +197,9 @@ bool SiteRuntime::dumpRaw(const std::string& why) {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
   const std::string dir = config_.record.raw_dir + "/" + stamp;
-  dump_thread_ = std::thread([this, cams = std::move(cams), dir, why] {
+  dump_thread_ = std::thread([this, cams = std::move(cams), dir, why, geometry = geometry_] {
     try {
-      const size_t n = writeRawDump(dir, cams, geometry_);
+      const size_t n = writeRawDump(dir, cams, geometry);
       log_("raw frames written (" + why + "): " + std::to_string(n) + " frames in " + dir +
            "; replay with: dotvision run --source " + dir + " --geometry " + dir + "/geometry.json --camera-id " +
            std::to_string(cams.front().camera_id));
@@ -236,6 +236,38 @@ void SiteRuntime::setReferee(const RefereeSnapshot& referee) {
   for (const std::string& w : current_heights_.warnings) log_(w);
   const DetectorOptions d = detectorOptions();
   for (auto& r : runners_) r->setDetectorOptions(d);
+}
+
+std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c, const std::string& publisher) {
+  const std::string name = "camera " + std::to_string(c.camera_id);
+  auto runner = std::find_if(runners_.begin(), runners_.end(), [&](const auto& r) { return r->cameraId() == c.camera_id; });
+  if (runner == runners_.end()) throw InputError(name, "no camera of this id runs here");
+  std::vector<std::string> notes;
+  (*runner)->setCalibration(c);
+  notes.push_back(name + ": its processor uses the new calibration from the next frame");
+  for (CameraCalibration& old : geometry_.cameras)
+    if (old.camera_id == c.camera_id) old = c;
+  outputs_->setGeometry(toProto(geometry_));
+  if (outputs_->publishesGeometry()) notes.push_back("the published geometry has the new calibration");
+  // To a geometry publisher, in this process or outside, the wire way.
+  std::string addr = "127.0.0.1";
+  uint16_t port = kGeometryListenPort;
+  if (geometry_publisher_) {
+    port = geometry_publisher_->listenPort();
+  } else if (config_.network.geometry == "publisher" || !outputs_->publishesGeometry()) {
+    if (!publisher.empty() && !splitListenAddress(publisher, addr, port)) {
+      addr = publisher;
+      port = kGeometryListenPort;
+    }
+  } else {
+    return notes;
+  }
+  CalibrationSender sender(addr, port);
+  if (sender.send(geometry_.field, {c}))
+    notes.push_back("sent to the geometry publisher at " + addr + ":" + std::to_string(port));
+  else
+    notes.push_back("could not send it to the geometry publisher at " + addr + ":" + std::to_string(port));
+  return notes;
 }
 
 std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {

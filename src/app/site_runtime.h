@@ -46,6 +46,13 @@ class SiteRuntime {
   // (unknown team names are logged once each).
   void setReferee(const RefereeSnapshot& referee);
   void tick() { outputs_->tick(); }
+  // A new calibration for camera c.camera_id (accepted on the console): its
+  // processor is rebuilt with it at the next frame and the published
+  // geometry changes. With an external geometry publisher (network.geometry
+  // "publisher") it is sent there, to `publisher` (ADDR or ADDR:PORT; ""
+  // 127.0.0.1:10013). Returns what was done; throws InputError when no
+  // camera of that id runs or the publisher address is bad.
+  std::vector<std::string> setCalibration(const CameraCalibration& c, const std::string& publisher);
   // Writes the raw rings (record.raw_dir) to a new folder, off the main
   // loop's thread; `why` goes into the log line. False when no ring is kept
   // or a dump is still being written.

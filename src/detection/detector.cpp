@@ -1396,6 +1396,16 @@ Detector::ColorSeparations Detector::colorSeparations() const {
           colorDistance(c[kOrange].color, c[kField].color)};
 }
 
+const char* Detector::classColorName(int i) {
+  static const char* kNames[kNumClasses] = {"yellow", "blue", "green", "pink", "orange", "field", "white"};
+  return i >= 0 && i < kNumClasses ? kNames[i] : "";
+}
+
+void Detector::classColors(ColorVec out[kClassColorCount]) const {
+  static_assert(kClassColorCount == kNumClasses, "one name per class");
+  for (int i = 0; i < kNumClasses; ++i) out[i] = impl_->classes[i].color;
+}
+
 void Detector::setOptions(const DetectorOptions& opt) {
   validateDetectorOptions(opt, impl_->camera);
   opt_ = opt;

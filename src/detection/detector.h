@@ -37,6 +37,8 @@
 #include "geometry/robot_pattern.h"
 #include "pipeline/blob.h"
 
+#include "detection/color_classes.h"
+
 namespace dv {
 
 struct RobotDetection {
@@ -186,6 +188,11 @@ class Detector {
     double yellow_blue = 0, green_pink = 0, orange_field = 0;
   };
   ColorSeparations colorSeparations() const;
+  // The learned class colors (same scale), for the console's Colors page:
+  // yellow, blue, green, pink, orange, field, white.
+  static constexpr int kClassColorCount = 7;
+  static const char* classColorName(int i);
+  void classColors(ColorVec out[kClassColorCount]) const;
 
  private:
   struct Impl;

@@ -22,6 +22,10 @@ bool HealthMonitor::update(CameraStatus& s) {
   history_.push_back({s.robots_per_frame, s.yellow_per_frame, s.blue_per_frame});
   while (history_.size() > kMinute) history_.pop_front();
 
+  const uint64_t new_in = c.frames_in - std::min(c.frames_in, last_in_);
+  const uint64_t new_dropped = c.dropped - std::min(c.dropped, last_dropped_);
+  last_in_ = c.frames_in;
+  last_dropped_ = c.dropped;
   Health h = Health::Ok;
   std::string kind, reason;
   if (c.state == SourceState::Lost) {
@@ -34,9 +38,12 @@ bool HealthMonitor::update(CameraStatus& s) {
     // Starting: the first frame builds the processor.
   } else if (s.fps_in > 0 && s.fps_out == 0) {
     h = Health::Degraded, kind = "stalled", reason = "frames arrive but none was processed in the last second";
-  } else if (s.fps_in > 0 && s.fps_out < 0.8 * s.fps_in) {
+  } else if (new_in >= 5 && new_dropped > 0.2 * new_in) {
+    // Judged by the frames dropped since the last record, not by the two
+    // rates, which differ by the frame in flight when the camera is slow.
     h = Health::Degraded, kind = "behind";
-    reason = fmt("processing behind the camera: %.0f of %.0f frames per second", s.fps_out, s.fps_in);
+    reason = fmt("processing behind the camera: %.0f of %.0f frames dropped in the last second",
+                 static_cast<double>(new_dropped), static_cast<double>(new_in));
   } else if (history_.size() > 2 * kRecent) {
     // Means over the older part of the minute and over the newest seconds.
     double old_y = 0, old_b = 0, new_y = 0, new_b = 0;

@@ -26,6 +26,7 @@ class HealthMonitor {
   Health last_ = Health::Ok;
   std::string last_kind_;
   bool first_ = true;
+  uint64_t last_in_ = 0, last_dropped_ = 0;  // counters at the previous update
 };
 
 }  // namespace dv

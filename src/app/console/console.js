@@ -28,8 +28,8 @@ const dv = {
     return { status: r.status, body: parsed };
   },
   header(active) {
-    const pages = [['field.html', 'Field'], ['camera.html', 'Camera'], ['status.html', 'Status'],
-                   ['settings.html', 'Settings']];
+    const pages = [['field.html', 'Field'], ['camera.html', 'Camera'], ['colors.html', 'Colors'],
+                   ['calibration.html', 'Calibration'], ['status.html', 'Status'], ['settings.html', 'Settings']];
     const h = document.createElement('header');
     h.innerHTML = '<span class="brand">dotvision</span><nav>' +
       pages.map(([href, name]) => `<a href="${href}"${name === active ? ' class="active"' : ''}>${name}</a>`).join('') +

@@ -30,7 +30,31 @@ function row(c) {
     `<td>${c.reconnects}</td><td>${dv.fixed(c.per_frame.robots, 1)}</td><td>${dv.fixed(c.per_frame.balls, 1)}</td>`;
 }
 
+// serve's recent log lines (/api/log), newest last; warnings in color.
+const logLines = [];
+let logSeq = 0;
+function showLog() {
+  const only = document.getElementById('warnings-only').checked;
+  const box = document.getElementById('log');
+  box.innerHTML = '';
+  for (const l of logLines.filter((x) => !only || x.warning).slice(-100)) {
+    const div = document.createElement('div');
+    div.className = l.warning ? 'log-warning' : '';
+    div.textContent = `${new Date(l.t * 1000).toLocaleTimeString()}  ${l.text}`;
+    box.appendChild(div);
+  }
+}
+
 async function statusPage() {
+  document.getElementById('warnings-only').addEventListener('change', showLog);
+  dv.every(2000, async () => {
+    const got = (await dv.get(`/api/log?after=${logSeq}`)).lines;
+    if (!got.length) return;
+    logLines.push(...got);
+    logSeq = got[got.length - 1].seq;
+    if (logLines.length > 500) logLines.splice(0, logLines.length - 500);
+    showLog();
+  });
   dv.every(1000, async () => {
     const s = await dv.get('/api/status');
     document.getElementById('config').textContent = `config ${s.config}` +
