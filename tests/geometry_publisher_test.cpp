@@ -213,19 +213,19 @@ TEST(GeometryPublisher, ImplausibleOrOutOfRangeCalibrationsAreRejected) {
   EXPECT_EQ(publisher.stats().published, 1u);  // only the one from start()
 }
 
-// A calibration packet whose q3 has its top mantissa bit flipped on the way.
+// A calibration packet whose q0 has its top mantissa bit flipped on the way.
 TEST(GeometryPublisher, NonUnitQuaternionIsRejected) {
   GeometryPublisher publisher(Geometry{FieldModel::divisionB(), {}}, loopbackOptions());
   ssl::SSL_WrapperPacket packet;
   *packet.mutable_geometry()->mutable_field() = toProto(FieldModel::divisionB());
   auto* calib = packet.mutable_geometry()->add_calib();
   *calib = toProto(overheadCamera(1, 0));
-  float q = calib->q1();
+  float q = calib->q0();  // 1 for this camera; the flip makes it 1.5
   uint32_t bits;
   std::memcpy(&bits, &q, 4);
   bits ^= 1u << 22;
   std::memcpy(&q, &bits, 4);
-  calib->set_q1(q);
+  calib->set_q0(q);
   const std::string bytes = packet.SerializeAsString();
   EXPECT_EQ(publisher.handleDatagram(bytes.data(), bytes.size(), inet_addr(kLoopback)),
             GeometryPublisher::Verdict::Rejected);
