@@ -3,6 +3,6 @@
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  dv::fuzz::expectOnlyInputErrors([&] { dv::parseSiteConfig(dv::fuzz::text(data, size), "fuzz.yaml"); });
+  dv::fuzz::expectOnlyInputErrors([&] { dv::app::parseSiteConfig(dv::fuzz::text(data, size), "fuzz.yaml"); });
   return 0;
 }
