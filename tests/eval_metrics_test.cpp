@@ -278,5 +278,37 @@ TEST_F(EvalFiles, GarbageLogRecordIsAnInputErrorWithOffset) {
   }
 }
 
+TEST_F(EvalFiles, DamagedLogHeaderIsReportedAsSuch) {
+  {
+    SslLogWriter w(path("damaged.log"));
+    ssl::SSL_WrapperPacket p;
+    *p.mutable_detection() = frame(0, 1);
+    w.write(1000, LogMessageType::Vision2014, p.SerializeAsString());
+  }
+  {
+    std::fstream f(path("damaged.log"), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(11);
+    f.put('X');  // SSL_LOG_FILX
+  }
+  try {
+    readDetectionFile(path("damaged.log"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path("damaged.log")), std::string::npos) << what;
+    EXPECT_NE(what.find("damaged SSL log header"), std::string::npos) << what;
+    EXPECT_EQ(what.find("JSON"), std::string::npos) << what;
+  }
+}
+
+TEST_F(EvalFiles, FileWithoutDetectionFramesWarns) {
+  writeText("empty.jsonl", "");
+  const auto d = readDetectionFile(path("empty.jsonl"));
+  EXPECT_TRUE(d.frames.empty());
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find(path("empty.jsonl") + ": holds no detection frames"), std::string::npos)
+      << d.warnings[0];
+}
+
 }  // namespace
 }  // namespace dv

@@ -316,6 +316,15 @@ TEST(GeometryIoBadInput, MalformedJsonNamesFileAndPosition) {
   EXPECT_NE(e.find("line 3, column 3"), std::string::npos) << e;
 }
 
+TEST(GeometryIoBadInput, JsonNumberOverflowNamesFileAndPosition) {
+  const std::string path = writeTemp("overflow.json", "{\"field\": {\n  \"fieldLength\": 1e400\n}}");
+  const std::string e = inputErrorOf([&] { loadGeometry(path); });
+  EXPECT_EQ(e.rfind(path + ": ", 0), 0u) << e;
+  EXPECT_NE(e.find("line 2, column 18"), std::string::npos) << e;
+  EXPECT_NE(e.find("number overflow"), std::string::npos) << e;
+  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+}
+
 TEST(GeometryIoBadInput, JsonUnknownField) {
   auto json = toCanonicalJson(toProto(Geometry{FieldModel::divisionB(), {}}));
   json.insert(1, "\"fieldSizes\": 3,");
@@ -426,6 +435,44 @@ TEST(GeometryIoBadInput, ImplausibleCalibrations) {
     EXPECT_NE(e.find("udp 127.0.0.1: camera 2"), std::string::npos) << e;
     EXPECT_NE(e.find(k.expected), std::string::npos) << e;
   }
+}
+
+TEST(GeometryIoBadInput, NonUnitQuaternionIsImplausible) {
+  CameraCalibration c = overheadCamera(2, 0, 0);
+  c.q0 *= 1.0 + 2 * kQuaternionLengthTolerance;
+  const std::string e = inputErrorOf([&] { validateCalibration(c, "cam.json"); });
+  EXPECT_NE(e.find("cam.json: camera 2"), std::string::npos) << e;
+  EXPECT_NE(e.find("not 1"), std::string::npos) << e;
+  // Float rounding of a normalised quaternion passes.
+  CameraCalibration rounded = overheadCamera(2, 0, 0);
+  rounded.q0 = float(rounded.q0), rounded.q1 = float(rounded.q1);
+  rounded.q2 = float(rounded.q2), rounded.q3 = float(rounded.q3);
+  EXPECT_FALSE(calibrationProblem(rounded).has_value());
+}
+
+TEST(GeometryIoBadInput, ZeroImageWidthWhereGivenIsRefused) {
+  Geometry g = twoCameraGeometry(FieldModel::divisionB());
+  auto m = toProto(g);
+  m.mutable_calib(0)->set_pixel_image_width(0);
+  const std::string e = inputErrorOf([&] { loadGeometry(writeTemp("zerowidth.json", toCanonicalJson(m))); });
+  EXPECT_NE(e.find("zerowidth.json: camera 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("pixel_image_width is 0"), std::string::npos) << e;
+  std::string yaml = toYaml(g);
+  yaml.replace(yaml.find("pixel_image_width: 2448"), 23, "pixel_image_width: 0");
+  const std::string y = inputErrorOf([&] { geometryFromYaml(yaml, "zerowidth.yaml"); });
+  EXPECT_NE(y.find("zerowidth.yaml: line"), std::string::npos) << y;
+  EXPECT_NE(y.find("'pixel_image_width' is 0"), std::string::npos) << y;
+}
+
+TEST(GeometryIoBadInput, FieldLineFarBeyondTheFieldIsRefused) {
+  Geometry g{FieldModel::divisionB(), {}};
+  g.field.lines[0].p1.x = -1e20;
+  const std::string e = inputErrorOf([&] { loadGeometry(writeTemp("farline.json", toCanonicalJson(toProto(g)))); });
+  EXPECT_NE(e.find("farline.json: field: field line '" + g.field.lines[0].name + "' lies beyond the field"),
+            std::string::npos) << e;
+  const std::string y = inputErrorOf([&] { geometryFromYaml(toYaml(g), "farline.yaml"); });
+  EXPECT_NE(y.find("farline.yaml: line"), std::string::npos) << y;
+  EXPECT_NE(y.find("lies beyond the field"), std::string::npos) << y;
 }
 
 TEST(GeometryIoBadInput, ImplausibleCalibrationInFile) {

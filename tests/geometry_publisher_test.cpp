@@ -19,6 +19,7 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
 
+#include <cstring>
 #include <sstream>
 
 #include "core/error.h"
@@ -210,6 +211,44 @@ TEST(GeometryPublisher, ImplausibleOrOutOfRangeCalibrationsAreRejected) {
   EXPECT_EQ(publisher.stats().accepted, 0u);
   EXPECT_TRUE(publisher.geometry().cameras.empty());
   EXPECT_EQ(publisher.stats().published, 1u);  // only the one from start()
+}
+
+// A calibration packet whose q0 has its top mantissa bit flipped on the way.
+TEST(GeometryPublisher, NonUnitQuaternionIsRejected) {
+  GeometryPublisher publisher(Geometry{FieldModel::divisionB(), {}}, loopbackOptions());
+  ssl::SSL_WrapperPacket packet;
+  *packet.mutable_geometry()->mutable_field() = toProto(FieldModel::divisionB());
+  auto* calib = packet.mutable_geometry()->add_calib();
+  *calib = toProto(overheadCamera(1, 0));
+  float q = calib->q0();  // 1 for this camera; the flip makes it 1.5
+  uint32_t bits;
+  std::memcpy(&bits, &q, 4);
+  bits ^= 1u << 22;
+  std::memcpy(&q, &bits, 4);
+  calib->set_q0(q);
+  const std::string bytes = packet.SerializeAsString();
+  EXPECT_EQ(publisher.handleDatagram(bytes.data(), bytes.size(), inet_addr(kLoopback)),
+            GeometryPublisher::Verdict::Rejected);
+  EXPECT_EQ(publisher.stats().rejected, 1u);
+  EXPECT_EQ(publisher.geometry().camera(1), nullptr);
+  // The same calibration intact is taken.
+  *calib = toProto(overheadCamera(1, 0));
+  const std::string good = packet.SerializeAsString();
+  EXPECT_EQ(publisher.handleDatagram(good.data(), good.size(), inet_addr(kLoopback)),
+            GeometryPublisher::Verdict::Accepted);
+}
+
+TEST(GeometryPublisher, ZeroImageSizeIsRejected) {
+  GeometryPublisher publisher(Geometry{FieldModel::divisionB(), {}}, loopbackOptions());
+  ssl::SSL_WrapperPacket packet;
+  *packet.mutable_geometry()->mutable_field() = toProto(FieldModel::divisionB());
+  auto* calib = packet.mutable_geometry()->add_calib();
+  *calib = toProto(overheadCamera(1, 0));
+  calib->set_pixel_image_width(0);
+  const std::string bytes = packet.SerializeAsString();
+  EXPECT_EQ(publisher.handleDatagram(bytes.data(), bytes.size(), inet_addr(kLoopback)),
+            GeometryPublisher::Verdict::Rejected);
+  EXPECT_EQ(publisher.geometry().camera(1), nullptr);
 }
 
 TEST(GeometryPublisher, BadOptionsAreInputErrors) {

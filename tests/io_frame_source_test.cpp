@@ -190,5 +190,76 @@ TEST_F(FrameSourceTest, VideoFramesComeInOrderWithContainerTimes) {
   EXPECT_EQ(n, 5);
 }
 
+TEST_F(FrameSourceTest, UndecodableLastVideoFrameIsCountedAsSkipped) {
+  cv::VideoWriter writer(path("clip.avi"), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
+                         25, cv::Size(64, 48));
+  if (!writer.isOpened()) GTEST_SKIP() << "no FFmpeg video writer in this OpenCV build";
+  for (int i = 0; i < 6; ++i) writer.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar(i * 40, 0, 0)));
+  writer.release();
+  // Wipe the last frame's JPEG data (from its start-of-image marker on).
+  std::string bytes;
+  {
+    std::ifstream in(path("clip.avi"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t last = bytes.rfind("\xff\xd8\xff");
+  ASSERT_NE(last, std::string::npos);
+  const size_t end = bytes.find("idx1", last);
+  ASSERT_NE(end, std::string::npos);
+  std::fill(bytes.begin() + long(last), bytes.begin() + long(end) - 8, '\0');
+  std::ofstream(path("clip.avi"), std::ios::binary | std::ios::trunc) << bytes;
+
+  auto src = openFrameSource(path("clip.avi"), {});
+  Frame f;
+  int n = 0;
+  while (src->next(f)) ++n;
+  EXPECT_EQ(n, 5);
+  ASSERT_EQ(src->skipped().size(), 1u);
+  EXPECT_NE(src->skipped()[0].name.find("clip.avi#5"), std::string::npos) << src->skipped()[0].name;
+  EXPECT_NE(src->skipped()[0].reason.find("5 of 6"), std::string::npos) << src->skipped()[0].reason;
+}
+
+TEST_F(FrameSourceTest, DanglingLinkInAFolderIsSkippedWithAReason) {
+  writeColor("a_0.png", 1);
+  fs::create_symlink(path("gone.png"), path("a_1.png"));
+  writeColor("a_2.png", 3);
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  int n = 0;
+  while (src->next(f)) ++n;
+  EXPECT_EQ(n, 2);
+  ASSERT_EQ(src->skipped().size(), 1u);
+  EXPECT_NE(src->skipped()[0].name.find("a_1.png"), std::string::npos);
+  EXPECT_NE(src->skipped()[0].reason.find("dangling symbolic link"), std::string::npos)
+      << src->skipped()[0].reason;
+  EXPECT_NE(src->skipped()[0].reason.find("gone.png"), std::string::npos) << src->skipped()[0].reason;
+}
+
+// A bit flipped in a PNG's image data: skipped with our reason, and the
+// decoder library prints nothing of its own ("libpng error: ...").
+TEST_F(FrameSourceTest, DamagedPngIsSkippedWithoutTheDecodersOwnLines) {
+  writeColor("a_0.png", 0);
+  std::string bytes;
+  {
+    std::ifstream in(path("a_0.png"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes[idat + 6] = char(bytes[idat + 6] ^ 0x55);
+  std::ofstream(path("a_0.png"), std::ios::binary | std::ios::trunc) << bytes;
+  writeColor("a_1.png", 1);
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  int n = 0;
+  ::testing::internal::CaptureStderr();
+  while (src->next(f)) ++n;
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(n, 1);
+  EXPECT_EQ(printed, "");
+  ASSERT_EQ(src->skipped().size(), 1u);
+  EXPECT_NE(src->skipped()[0].reason.find("IDAT chunk at byte"), std::string::npos) << src->skipped()[0].reason;
+}
+
 }  // namespace
 }  // namespace dv

@@ -1,4 +1,5 @@
 // dotvision: shape-based shared vision for the RoboCup Small Size League.
+#include <opencv2/core/utils/logger.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -11,6 +12,9 @@
 
 int main(int argc, char** argv) {
   using namespace dv::app;
+  // OpenCV's own lines (decoder warnings, plugin probing) would come before
+  // and between the project's messages; a bad input is reported once, by us.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   CLI::App root{"dotvision: RoboCup SSL shared vision (shape-based blob detection, "
                 "automatic calibration, SSL protocol)",
                 "dotvision"};

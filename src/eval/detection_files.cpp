@@ -106,8 +106,10 @@ DetectionFile readTruthJsonl(const std::string& path) {
 
 DetectionFile readDetectionFile(const std::string& path) {
   const std::string head = leadingBytes(path, 12);
-  if (head == "SSL_LOG_FILE") return readDetectionLog(path);
-  return readDetectionJsonl(path);
+  // A damaged log header goes to the log reader, which names the damage.
+  DetectionFile out = looksLikeSslLogHeader(head) ? readDetectionLog(path) : readDetectionJsonl(path);
+  if (out.frames.empty()) out.warnings.push_back(path + ": holds no detection frames");
+  return out;
 }
 
 }  // namespace dv

@@ -244,6 +244,11 @@ std::optional<std::string> calibrationProblem(const CameraCalibration& c) {
   if (!(c.focal_length > 0)) return "focal_length " + fmt(c.focal_length) + " px is not positive";
   const double n2 = c.q0 * c.q0 + c.q1 * c.q1 + c.q2 * c.q2 + c.q3 * c.q3;
   if (n2 < 1e-6) return "the rotation quaternion (q0..q3) is zero";
+  // Senders normalise; a length off by more than float rounding is damage
+  // (a flipped bit), not a rotation.
+  if (std::abs(std::sqrt(n2) - 1) > kQuaternionLengthTolerance) {
+    return "the rotation quaternion (q0..q3) has length " + fmt(std::sqrt(n2)) + ", not 1";
+  }
   const CameraModel model(c);
   const Eigen::Vector3d& pos = model.position();
   if (!pos.allFinite()) return "the camera position is not finite";
@@ -262,6 +267,13 @@ std::optional<std::string> calibrationProblem(const CameraCalibration& c) {
            std::to_string(c.image_height) + " image";
   }
   return std::nullopt;
+}
+
+std::optional<std::string> calibrationProblem(const dv::ssl::SSL_GeometryCameraCalibration& m) {
+  // 0 in CameraCalibration means "not given"; a sender that gives 0 is wrong.
+  if (m.has_pixel_image_width() && m.pixel_image_width() == 0) return "pixel_image_width is 0";
+  if (m.has_pixel_image_height() && m.pixel_image_height() == 0) return "pixel_image_height is 0";
+  return calibrationProblem(calibrationFromProto(m));
 }
 
 void validateCalibration(const CameraCalibration& c, const std::string& source) {
@@ -300,16 +312,28 @@ std::optional<std::string> fieldProblem(const FieldModel& f) {
   if (2 * f.center_circle_radius > std::min(f.field_length, f.field_width)) {
     return "the center circle does not fit in the field";
   }
+  // Markings lie on the field with its boundary; one a field length or more
+  // away from the centre is a damaged number.
+  const double reach = f.field_length + f.field_width;
+  auto onField = [&](FieldMm p) { return std::abs(p.x) <= reach && std::abs(p.y) <= reach; };
   for (const auto& l : f.lines) {
     if (!finite(l.p1.x) || !finite(l.p1.y) || !finite(l.p2.x) || !finite(l.p2.y) ||
         !finite(l.thickness) || l.thickness <= 0) {
       return "field line '" + l.name + "' has a non-finite point or a thickness <= 0";
+    }
+    if (!onField(l.p1) || !onField(l.p2) || l.thickness > reach) {
+      return "field line '" + l.name + "' lies beyond the field (a coordinate or the thickness is over " +
+             fmt(reach) + " mm)";
     }
   }
   for (const auto& a : f.arcs) {
     if (!finite(a.center.x) || !finite(a.center.y) || !finite(a.radius) || !finite(a.a1) ||
         !finite(a.a2) || !finite(a.thickness) || a.radius <= 0 || a.thickness <= 0) {
       return "field arc '" + a.name + "' has a non-finite value, or a radius or thickness <= 0";
+    }
+    if (!onField(a.center) || a.radius > reach || a.thickness > reach) {
+      return "field arc '" + a.name + "' lies beyond the field (the centre, radius or thickness is over " +
+             fmt(reach) + " mm)";
     }
   }
   return std::nullopt;
@@ -340,7 +364,13 @@ Geometry geometryFromProto(const dv::ssl::SSL_GeometryData& m, const std::string
   }
   Geometry g;
   g.field = fieldFromProto(m.field());
-  for (const auto& c : m.calib()) g.cameras.push_back(calibrationFromProto(c));
+  for (const auto& c : m.calib()) {
+    if (auto problem = calibrationProblem(c)) {
+      throw InputError(source, "camera " + std::to_string(c.camera_id()) + ": implausible calibration: " +
+                                   *problem);
+    }
+    g.cameras.push_back(calibrationFromProto(c));
+  }
   validateGeometry(g, source);
   return g;
 }
@@ -353,22 +383,56 @@ namespace {
 // so the text is checked with it first to report line and column.
 // It also checks the outer shape, where protobuf's messages mislead (an array
 // in place of "field" is reported as "missing field field").
+// "line L, column C" of byte `byte` (0-based) in `text`.
+std::string lineAndColumn(const std::string& text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < std::min(text.size(), byte); ++i) {
+    if (text[i] == '\n') ++line, column = 1;
+    else ++column;
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// nlohmann reports some errors without a place (a number that overflows a
+// double: out_of_range.406); a SAX pass that records where the first error
+// starts finds it.
+struct FirstErrorByte : nlohmann::json_sax<nlohmann::json> {
+  size_t byte = 0;
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t end, const std::string& token, const nlohmann::detail::exception&) override {
+    byte = end >= token.size() ? end - token.size() : 0;  // `end` is just past the token
+    return false;
+  }
+};
+
 void checkJsonSyntaxAndShape(const std::string& text, const std::string& source) {
   nlohmann::json parsed;
   try {
     parsed = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::out_of_range& e) {
+    FirstErrorByte place;
+    nlohmann::json::sax_parse(text, &place);
+    std::string what = e.what();
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'"
+    if (auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    throw InputError(source, "malformed JSON at " + lineAndColumn(text, place.byte) + ": " + what);
   } catch (const nlohmann::json::parse_error& e) {
-    size_t line = 1, column = 1;
-    const size_t end = std::min(text.size(), e.byte > 0 ? size_t(e.byte - 1) : size_t(0));
-    for (size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') ++line, column = 1;
-      else ++column;
-    }
     std::string what = e.what();
     // "[json.exception.parse_error.101] parse error at line 1, column 5: syntax error ..."
     if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-    throw InputError(source, "malformed JSON at line " + std::to_string(line) + ", column " +
-                                 std::to_string(column) + ": " + what);
+    throw InputError(source, "malformed JSON at " + lineAndColumn(text, e.byte > 0 ? e.byte - 1 : 0) +
+                                 ": " + what);
   }
   if (!parsed.is_object()) throw InputError(source, "expected a JSON object (SSL_GeometryData)");
   for (const auto& [key, value] : parsed.items()) {
@@ -388,12 +452,16 @@ void checkJsonSyntaxAndShape(const std::string& text, const std::string& source)
   if (!parsed.contains("field")) throw InputError(source, "SSL_GeometryData lacks the required \"field\"");
 }
 
+}  // namespace
+
 Geometry geometryFromJson(const std::string& text, const std::string& source) {
   checkJsonSyntaxAndShape(text, source);
   dv::ssl::SSL_GeometryData m;
   parseCanonicalJson(text, m, source);
   return geometryFromProto(m, source);
 }
+
+namespace {
 
 // ---- YAML ----
 
@@ -571,8 +639,13 @@ class YamlReader {
     for (const char* k : {"derived_camera_world_tx", "derived_camera_world_ty", "derived_camera_world_tz"}) {
       if (n[k]) (void)as<double>(n[k], k, num);
     }
-    if (n["pixel_image_width"]) c.image_width = as<uint32_t>(n["pixel_image_width"], "pixel_image_width", "a non-negative integer");
-    if (n["pixel_image_height"]) c.image_height = as<uint32_t>(n["pixel_image_height"], "pixel_image_height", "a non-negative integer");
+    for (auto [key, member] : {std::pair{"pixel_image_width", &CameraCalibration::image_width},
+                               {"pixel_image_height", &CameraCalibration::image_height}}) {
+      if (const YAML::Node v = n[key]) {
+        c.*member = as<uint32_t>(v, key, "a positive integer");
+        if (c.*member == 0) fail(v, "camera " + std::to_string(c.camera_id) + ": '" + key + "' is 0");
+      }
+    }
     if (auto problem = calibrationProblem(c)) {
       fail(n, "camera " + std::to_string(c.camera_id) + ": implausible calibration: " + *problem);
     }

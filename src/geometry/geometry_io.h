@@ -37,6 +37,8 @@ void saveGeometry(const Geometry& g, const std::string& path);
 // The YAML form as a string, and back. `source` names the text in errors.
 std::string toYaml(const Geometry& g);
 Geometry geometryFromYaml(const std::string& text, const std::string& source);
+// The text of a .json geometry file; throws InputError naming `source`.
+Geometry geometryFromJson(const std::string& text, const std::string& source);
 
 dv::ssl::SSL_GeometryData toProto(const Geometry& g);
 dv::ssl::SSL_GeometryFieldSize toProto(const FieldModel& f);
@@ -53,15 +55,23 @@ Geometry geometryFromProto(const dv::ssl::SSL_GeometryData& m, const std::string
 FieldModel fieldFromProto(const dv::ssl::SSL_GeometryFieldSize& m);
 CameraCalibration calibrationFromProto(const dv::ssl::SSL_GeometryCameraCalibration& m);
 
-// What makes a calibration implausible (focal <= 0, NaN/inf, zero quaternion,
-// camera at or below the field), or nullopt when it is usable. Does not
-// allocate on success, so receivers can call it on every packet.
+// |q| may differ from 1 by this much (float rounding of a normalised q).
+inline constexpr double kQuaternionLengthTolerance = 1e-3;
+
+// What makes a calibration implausible (focal <= 0, NaN/inf, a quaternion
+// that is zero or not of unit length, camera at or below the field), or
+// nullopt when it is usable. Does not allocate on success, so receivers can
+// call it on every packet.
 std::optional<std::string> calibrationProblem(const CameraCalibration& c);
+// The same for a calibration as sent, where an image size given as 0 is
+// also implausible (CameraCalibration takes 0 as "not given").
+std::optional<std::string> calibrationProblem(const dv::ssl::SSL_GeometryCameraCalibration& m);
 // Throws InputError(source, "camera N: " + problem) when implausible.
 void validateCalibration(const CameraCalibration& c, const std::string& source);
 
 // What makes a field unusable (a dimension <= 0 or not finite, areas that do
-// not fit in the field, a line with a non-finite point), or nullopt.
+// not fit in the field, a line with a non-finite point or one beyond the
+// field), or nullopt.
 std::optional<std::string> fieldProblem(const FieldModel& f);
 void validateField(const FieldModel& f, const std::string& source);
 

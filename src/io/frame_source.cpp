@@ -2,6 +2,7 @@
 #include "io/frame_times.h"
 
 #include <glob.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -31,6 +32,28 @@ bool endsWith(const std::vector<unsigned char>& bytes, size_t size, const unsign
   return size >= n && std::equal(tail, tail + n, bytes.begin() + static_cast<long>(size - n));
 }
 
+// The first chunk whose CRC does not match, as a skip reason ("" if none).
+// libpng would print its own "libpng error" line for such a file before
+// failing, and for a damaged ancillary chunk decode it with a warning.
+std::string pngChunkDamage(const unsigned char* bytes, size_t size) {
+  size_t at = 8;
+  while (at + 12 <= size) {
+    const uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+                            uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+    if (length > size - at - 12) return "damaged PNG (chunk at byte " + std::to_string(at) + " runs past the end)";
+    const unsigned char* type = bytes + at + 4;
+    const unsigned char* crc = type + 4 + length;
+    const uint32_t stored = uint32_t(crc[0]) << 24 | uint32_t(crc[1]) << 16 | uint32_t(crc[2]) << 8 | uint32_t(crc[3]);
+    if (uint32_t(::crc32(0, type, 4 + length)) != stored) {
+      return "damaged PNG (" + std::string(reinterpret_cast<const char*>(type), 4) + " chunk at byte " +
+             std::to_string(at) + " fails its CRC)";
+    }
+    if (std::equal(type, type + 4, "IEND")) return "";
+    at += 12 + length;
+  }
+  return "damaged PNG (no IEND chunk)";
+}
+
 // Decoders fill a truncated JPEG with gray and warn on stderr, and some PNG
 // paths do similar; checking the end markers catches the cut before decoding.
 // Returns an empty string when the bytes look complete.
@@ -38,7 +61,8 @@ std::string truncationReason(const std::vector<unsigned char>& bytes, size_t siz
   static const unsigned char kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   static const unsigned char kPngEnd[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
   if (size >= 8 && std::equal(kPngMagic, kPngMagic + 8, bytes.begin())) {
-    return endsWith(bytes, size, kPngEnd, 8) ? "" : "truncated PNG (no IEND chunk at the end)";
+    if (!endsWith(bytes, size, kPngEnd, 8)) return "truncated PNG (no IEND chunk at the end)";
+    return pngChunkDamage(bytes.data(), size);
   }
   if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) {
     // Allow trailing padding after EOI, as some cameras write it.
@@ -62,11 +86,19 @@ bool readFileInto(const std::string& path, std::vector<unsigned char>& buffer, s
   return static_cast<size_t>(in.gcount()) == size;
 }
 
+// A link to nothing stays in the list, so that reading it records a skip
+// instead of the frame vanishing without a word.
+bool isImageOrDanglingLink(const fs::path& p) {
+  std::error_code ec;
+  if (!isImageFileName(p.string())) return false;
+  if (fs::is_regular_file(p, ec)) return true;
+  return fs::is_symlink(fs::symlink_status(p, ec)) && !fs::exists(p, ec);
+}
+
 std::vector<std::string> imagesInDirectory(const std::string& dir) {
   std::vector<std::string> out;
   for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_regular_file() && isImageFileName(entry.path().string()))
-      out.push_back(entry.path().string());
+    if (isImageOrDanglingLink(entry.path())) out.push_back(entry.path().string());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -78,7 +110,7 @@ std::vector<std::string> imagesMatchingGlob(const std::string& pattern) {
   if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) {
     for (size_t i = 0; i < g.gl_pathc; ++i) {
       std::string p = g.gl_pathv[i];
-      if (fs::is_regular_file(p) && isImageFileName(p)) out.push_back(std::move(p));
+      if (isImageOrDanglingLink(p)) out.push_back(std::move(p));
     }
   }
   globfree(&g);
@@ -134,7 +166,12 @@ bool ImageSequenceSource::next(Frame& f) {
     const std::string& path = paths_[cursor_++];
     size_t size = 0;
     if (!readFileInto(path, file_bytes_, size)) {
-      recordSkip(path, "cannot read the file");
+      std::error_code ec;
+      if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec)) {
+        recordSkip(path, "dangling symbolic link (to " + fs::read_symlink(path, ec).string() + ")");
+      } else {
+        recordSkip(path, "cannot read the file");
+      }
       continue;
     }
     if (size == 0) {
@@ -228,7 +265,8 @@ bool VideoSource::next(Frame& f) {
     return false;
   }
   if (!ok || f.image.empty()) {
-    if (frame_count_ > 0 && index_ + 1 < static_cast<uint32_t>(frame_count_))
+    // The container's count includes a last frame that did not decode.
+    if (frame_count_ > 0 && index_ < static_cast<uint32_t>(frame_count_))
       recordSkip(path_ + "#" + std::to_string(index_),
                  "the video ended early (" + std::to_string(index_) + " of " +
                      std::to_string(frame_count_) + " frames decoded)");

@@ -35,9 +35,31 @@ uint64_t getBigEndian(const uint8_t* in, int bytes) {
   return value;
 }
 
+// Bytes as text for a message, non-printable ones as \xNN.
+std::string printable(const std::string& bytes) {
+  std::string out;
+  for (unsigned char c : bytes) {
+    if (c >= 0x20 && c < 0x7f && c != '"' && c != '\\') {
+      out += char(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  return out;
+}
+
 std::string at(int64_t offset) { return "byte " + std::to_string(offset) + ": "; }
 
 }  // namespace
+
+bool looksLikeSslLogHeader(const std::string& head) {
+  if (head.size() < 12) return false;
+  int same = 0;
+  for (int i = 0; i < 12; ++i) same += head[size_t(i)] == kMagic[i];
+  return same >= 8;
+}
 
 bool isCompressedLogPath(const std::string& path) {
   return path.size() >= 2 && path.compare(path.size() - 2, 2, "gz") == 0;
@@ -153,7 +175,10 @@ SslLogReader::SslLogReader(const std::string& path) : path_(path) {
     problem = "truncated header: " + std::to_string(got) + " of " +
               std::to_string(kSslLogHeaderBytes) + " bytes";
   } else if (std::memcmp(header, kMagic, 12) != 0) {
-    problem = "not an SSL log file (does not start with \"SSL_LOG_FILE\")";
+    const std::string head(reinterpret_cast<const char*>(header), 12);
+    problem = looksLikeSslLogHeader(head) ? "damaged SSL log header: the file starts with \"" +
+                                                printable(head) + "\", not \"SSL_LOG_FILE\""
+                                          : "not an SSL log file (does not start with \"SSL_LOG_FILE\")";
   } else if (int32_t version = int32_t(getBigEndian(header + 12, 4)); version != kVersion) {
     problem = "byte 12: unsupported log version " + std::to_string(version) +
               " (only version 1 exists)";

@@ -33,6 +33,11 @@ inline constexpr int kSslLogRecordHeaderBytes = 16;
 // so a record claiming more than this is a damaged size field.
 inline constexpr int32_t kSslLogMaxPayloadBytes = 64 * 1024 * 1024;
 
+// True when `head`, a file's first bytes, is the SSL log header or close to
+// it (at least 8 of the 12 magic bytes in place): a damaged header is then
+// reported as one rather than taken for another format.
+bool looksLikeSslLogHeader(const std::string& head);
+
 // True when the log at `path` is (or will be) one gzip stream: the name
 // ends in "gz", the rule the league's tools use.
 bool isCompressedLogPath(const std::string& path);

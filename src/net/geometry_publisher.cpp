@@ -254,7 +254,7 @@ GeometryPublisher::Verdict GeometryPublisher::handleDatagram(const char* data, s
     if (c.camera_id >= options_.num_cameras) {
       reason = "camera id outside 0.." + std::to_string(options_.num_cameras - 1) + " (--num-cameras)";
     } else {
-      reason = calibrationProblem(c);
+      reason = calibrationProblem(m);
     }
     if (reason) {
       ++stats_.rejected;
@@ -370,7 +370,7 @@ std::optional<Geometry> receiveGeometry(uint32_t camera_id, double timeout_s,
     g.field = fieldFromProto(data.field());
     g.cameras = {calibrationFromProto(*it)};
     auto problem = fieldProblem(g.field);
-    if (!problem) problem = calibrationProblem(g.cameras[0]);
+    if (!problem) problem = calibrationProblem(*it);
     if (problem) {
       if (!warned) spdlog::warn("{}: ignoring geometry for camera {}: {}", rx.name(), camera_id, *problem);
       warned = true;

@@ -50,13 +50,16 @@ void RefereeListener::warnOnce(const std::string& reason) {
     spdlog::warn("{}: dropping referee datagrams: {} (warned once; they are counted)", name_, reason);
 }
 
-void RefereeListener::handle(const std::string& payload, const std::string& sender) {
-  std::string problem;
-  if (!packet_.ParsePartialFromString(payload)) {
-    problem = "not a Referee message (the bytes do not decode)";
-  } else if (!packet_.IsInitialized()) {
-    problem = "Referee message without required field(s) " + packet_.InitializationErrorString();
+std::string parseRefereeDatagram(const std::string& payload, dv::ssl::Referee& packet) {
+  if (!packet.ParsePartialFromString(payload)) return "not a Referee message (the bytes do not decode)";
+  if (!packet.IsInitialized()) {
+    return "Referee message without required field(s) " + packet.InitializationErrorString();
   }
+  return "";
+}
+
+void RefereeListener::handle(const std::string& payload, const std::string& sender) {
+  const std::string problem = parseRefereeDatagram(payload, packet_);
   if (!problem.empty()) {
     warnOnce(problem);
     std::lock_guard<std::mutex> lock(mutex_);

@@ -49,6 +49,10 @@ struct RefereeListenerStats {
   uint64_t malformed_reasons = 0;  // distinct reasons among them (each warned about once)
 };
 
+// Decodes one datagram into `packet`: "" when it is a complete Referee
+// message, else why not (what the listener drops and counts).
+std::string parseRefereeDatagram(const std::string& payload, dv::ssl::Referee& packet);
+
 class RefereeListener {
  public:
   // Joins the group and starts the thread. Throws InputError naming
