@@ -11,6 +11,9 @@
 // Skipped, saying why, where chromium or chromedriver is not installed.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include <nlohmann/json.hpp>
 
 #include "console_serve.h"
@@ -90,9 +93,16 @@ TEST_F(ConsoleBrowser, CameraPageLoadsFramesOfTheSizeItAsked) {
   d.navigate(serve_->url("/camera.html?camera=1"));
   ASSERT_TRUE(d.waitUntil("const i = document.getElementById('snapshot'); return Number(i.dataset.loaded) >= 3"))
       << d.execute("return document.getElementById('snapshot').src");
-  const json img = d.execute(
-      "const i = document.getElementById('snapshot'); "
-      "return [i.naturalWidth, i.naturalHeight, new URL(i.src).searchParams.get('width'), i.src]");
+  // The page keeps replacing the image; read it between a load and the next request.
+  json img;
+  for (int tries = 0; tries < 100; ++tries) {
+    img = d.execute(
+        "const i = document.getElementById('snapshot'); "
+        "return [i.complete ? i.naturalWidth : 0, i.complete ? i.naturalHeight : 0, "
+        "new URL(i.src).searchParams.get('width'), i.src]");
+    if (img.is_array() && img[0].is_number() && img[0].get<int>() > 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   const int asked = std::stoi(img[2].get<std::string>());
   EXPECT_GT(asked, 500) << img.dump();  // a 1280 px window asks for its width, at most 960
   EXPECT_LE(asked, 960) << img.dump();
