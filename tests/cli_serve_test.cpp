@@ -49,7 +49,7 @@ frames: 1
 std::string siteConfig(const std::string& scene, int vision_port, int referee_port, double default_height,
                        const std::string& tail = "") {
   std::ostringstream s;
-  s << "cameras:\n  - id: 0\n    source: synthetic://" << scene << "/0\n    threads: 1\n"
+  s << "cameras:\n  - id: 0\n    source: synthetic://" << scene << "/0\n    threads: 1\n    backend: cpu\n"
     << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port << ", interface: 127.0.0.1}\n"
     << "  referee: {enabled: true, group: 224.5.23.1, port: " << referee_port << "}\n"
     << "robot_heights:\n  default: " << default_height << "\n  teams: {ER-Force: 150}\n" << tail
@@ -234,7 +234,7 @@ TEST_F(ServeLive, ABadCameraIsReportedAndTheOthersRunWithTheGeometryPublished) {
   ASSERT_EQ(runCli("synth " + dir_.file("scene.yaml") + " --out " + dir_.file("scene_out"), out), 0) << out;
   std::ostringstream cfg;
   cfg << "cameras:\n"
-      << "  - {id: 0, source: \"synthetic://" << dir_.file("scene.yaml") << "/0\", threads: 1}\n"
+      << "  - {id: 0, source: \"synthetic://" << dir_.file("scene.yaml") << "/0\", threads: 1, backend: cpu}\n"
       << "  - {id: 1, source: " << dir_.file("no_such_folder") << "}\n"
       << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port_ << ", interface: 127.0.0.1}\n"
       << "  geometry: {source: publish, file: " << dir_.file("scene_out/geometry.json") << "}\n"

@@ -81,7 +81,11 @@ TEST_F(ConsoleApi, StatusCamerasDetectionsAndGeometry) {
   ASSERT_EQ(status["cameras"].size(), 2u) << status.dump() << serve_->log();
   EXPECT_EQ(status["config"], serve_->configPath());
   for (const json& c : status["cameras"]) {
-    EXPECT_EQ(c["health"], "ok") << c.dump();
+    // Ok, or behind while a loaded machine starts both cameras; never lost.
+    EXPECT_TRUE(c["health"] == "ok" ||
+                (c["health"] == "degraded" &&
+                 c["health_reason"].get<std::string>().find("behind") != std::string::npos))
+        << c.dump();
     EXPECT_TRUE(c["latency"]["total"]["p99_ms"].is_number());
     EXPECT_TRUE(c["frames"]["dropped"].is_number());
   }

@@ -43,8 +43,8 @@ frames: 1
     const int vision_port = 45000 + ::getpid() % 1000;
     config_ = dir_.file("site.yaml");
     std::ofstream(config_) << "cameras:\n"
-                           << "  - {id: 0, source: synthetic://" << dir_.file("scene.yaml") << "/0, threads: 1}\n"
-                           << "  - {id: 1, source: synthetic://" << dir_.file("scene.yaml") << "/1, threads: 1}\n"
+                           << "  - {id: 0, source: synthetic://" << dir_.file("scene.yaml") << "/0, threads: 1, backend: cpu}\n"
+                           << "  - {id: 1, source: synthetic://" << dir_.file("scene.yaml") << "/1, threads: 1, backend: cpu}\n"
                            << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port
                            << ", interface: 127.0.0.1}\n  referee: {enabled: false}\n"
                            << "robot_heights:\n  default: 140   # the league's usual\n"
