@@ -699,6 +699,8 @@ RenderedFrame Renderer::render(int frame, size_t camera_index) const {
   s.gain[0] = g * l.white_balance.b;
   s.gain[1] = g * l.white_balance.g;
   s.gain[2] = g * l.white_balance.r;
+  s.saturation = l.saturation;
+  s.gamma = l.gamma;
   s.lens_blur_px = spec_.lens_blur_px;
   s.noise_sigma = spec_.noise_sigma;
   s.shot_noise = spec_.shot_noise;

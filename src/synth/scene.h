@@ -76,6 +76,11 @@ struct LightPatch {
 struct SceneLighting {
   double exposure = 1.0;  // overall brightness multiplier (exposure x gain)
   Rgb white_balance{1, 1, 1};  // per-channel gains applied by the camera
+  // The camera's color processing after the gains: saturation mixes each
+  // color with its luma (0 = gray, 1 = unchanged, > 1 more vivid); gamma
+  // maps v -> 255 (v / 255)^gamma (1 = linear). Both 1: skipped.
+  double saturation = 1.0;
+  double gamma = 1.0;
   // Smooth brightness gradient across the image: brightest / darkest = ratio,
   // increasing along image direction `uneven_direction` (rad, 0 = +u).
   double uneven_ratio = 1.0;

@@ -320,12 +320,14 @@ LightPatch readPatch(const SceneReader& r, const YAML::Node& n, const std::strin
 
 SceneLighting readLighting(const SceneReader& r, const YAML::Node& n) {
   r.checkKeys(n, "lighting",
-              {"exposure", "white_balance", "uneven_ratio", "uneven_direction", "vignetting",
+              {"exposure", "white_balance", "saturation", "gamma", "uneven_ratio", "uneven_direction", "vignetting",
                "sun_patches", "shadows", "object_shadow", "flicker_amplitude",
                "flicker_frequency", "exposure_time"});
   SceneLighting l;
   with(n, "exposure", [&](const YAML::Node& v) { l.exposure = r.number(v, "lighting.exposure", 0, 100); });
   with(n, "white_balance", [&](const YAML::Node& v) { l.white_balance = r.color(v, "lighting.white_balance"); });
+  with(n, "saturation", [&](const YAML::Node& v) { l.saturation = r.number(v, "lighting.saturation", 0, 3); });
+  with(n, "gamma", [&](const YAML::Node& v) { l.gamma = r.number(v, "lighting.gamma", 0.2, 5); });
   with(n, "uneven_ratio", [&](const YAML::Node& v) { l.uneven_ratio = r.number(v, "lighting.uneven_ratio", 1, 100); });
   with(n, "uneven_direction", [&](const YAML::Node& v) { l.uneven_direction = r.number(v, "lighting.uneven_direction", -100, 100); });
   with(n, "vignetting", [&](const YAML::Node& v) { l.vignetting = r.number(v, "lighting.vignetting", 0, 0.95); });

@@ -46,6 +46,26 @@ double flickerGain(const SceneLighting& l, double t) {
   return 1 + l.flicker_amplitude * std::sin(w * t) * sinc;
 }
 
+namespace {
+
+// Saturation about the pixel's luma (BT.601 weights), then gamma on 0..255.
+void applyColorProcessing(cv::Mat& radiance, double saturation, double gamma) {
+  const float s = static_cast<float>(saturation);
+  for (int v = 0; v < radiance.rows; ++v) {
+    float* p = radiance.ptr<float>(v);
+    for (int u = 0; u < radiance.cols; ++u, p += 3) {
+      const float y = 0.114f * p[0] + 0.587f * p[1] + 0.299f * p[2];
+      for (int c = 0; c < 3; ++c) {
+        float x = std::max(0.0f, y + s * (p[c] - y));
+        if (gamma != 1) x = static_cast<float>(255.0 * std::pow(std::min(x, 255.0f) / 255.0, gamma));
+        p[c] = x;
+      }
+    }
+  }
+}
+
+}  // namespace
+
 cv::Mat applySensor(cv::Mat& radiance, const cv::Mat& uneven, const SensorSettings& s) {
   const int rows = radiance.rows, cols = radiance.cols;
   for (int v = 0; v < rows; ++v) {
@@ -58,6 +78,7 @@ cv::Mat applySensor(cv::Mat& radiance, const cv::Mat& uneven, const SensorSettin
       p[3 * u + 2] *= float(s.gain[2]) * k;
     }
   }
+  if (s.saturation != 1 || s.gamma != 1) applyColorProcessing(radiance, s.saturation, s.gamma);
   if (s.lens_blur_px > 0) cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), s.lens_blur_px);
 
   SplitMix64 rng(s.noise_seed);

@@ -22,6 +22,8 @@ double flickerGain(const SceneLighting& l, double t);
 
 struct SensorSettings {
   double gain[3] = {1, 1, 1};  // per channel, B, G, R (exposure x white balance x flicker)
+  double saturation = 1;       // mix with luma after the gains (SceneLighting)
+  double gamma = 1;
   double lens_blur_px = 0;
   double noise_sigma = 0;      // read noise, 8-bit levels
   double shot_noise = 0;       // variance per level of signal

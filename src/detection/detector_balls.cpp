@@ -1,0 +1,214 @@
+#include "detection/detector_impl.h"
+
+namespace dv {
+
+FieldMm Detector::Impl::reflectAtWalls(FieldMm from, FieldMm p) const {
+  const double r = opt.ball_radius;
+  auto mirror = [](double v0, double v, double lo, double hi) {
+    if (hi <= lo || v0 < lo || v0 > hi) return v;  // not between the walls
+    if (v > hi) v = std::max(lo, 2 * hi - v);
+    if (v < lo) v = std::min(hi, 2 * lo - v);
+    return v;
+  };
+  return {mirror(from.x, p.x, ball_area.x_min + r, ball_area.x_max - r),
+          mirror(from.y, p.y, ball_area.y_min + r, ball_area.y_max - r)};
+}
+
+void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
+  ball_cands.clear();
+  // Learned negatives: everything a ball candidate must be farther from
+  // than from the orange class.
+  const int negatives[] = {kField, kWhite, kPink, kGreen, kYellow, kBlue};
+  const ColorVec orange = classes[kOrange].color;
+  const ColorVec mapped_orange = color_map.apply(classes[kOrange].reference);
+  // Strength reference: the median score of this frame's robot blobs.
+  score_buf.clear();
+  for (const auto& r : robots)
+    for (int i = 0; i < r.n; ++i)
+      if (!blobs[r.blob[i]].weak) score_buf.push_back(blobs[r.blob[i]].score);
+  double strength_ref = 0;
+  if (!score_buf.empty()) {
+    auto mid = score_buf.begin() + score_buf.size() / 2;
+    std::nth_element(score_buf.begin(), mid, score_buf.end());
+    strength_ref = *mid;
+  }
+  // Ball predictions: straight on from the last two frames, mirrored at
+  // the walls it would cross.
+  for (auto& bt : ball_tracks) {
+    bt.predicted = bt.pos[1];
+    const double dt = std::max(0.0, t - bt.t[1]);
+    const double reach = opt.max_ball_speed * std::min(dt, 0.1);
+    if (bt.history >= 2 && bt.t[1] > bt.t[0]) {
+      const double f = dt / (bt.t[1] - bt.t[0]);
+      bt.predicted = reflectAtWalls(bt.pos[1], {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
+                                     bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)});
+      bt.gate = 30 + 0.5 * reach;
+    } else {
+      bt.gate = 30 + reach;
+    }
+    // Next to a robot the ball may have been kicked in any direction: the
+    // track also takes what it could reach from its last position.
+    bt.kick_gate = 0;
+    const double touch = RobotPatternGeometry::kMaxRadius + opt.ball_radius +
+                         (opt.max_ball_speed + opt.max_robot_speed) * std::min(dt, 0.1);
+    for (const auto& r : robots)
+      if (dist(bt.pos[1], r.pose.position) < touch) bt.kick_gate = 30 + reach;
+    bt.confirmed = false;
+  }
+  const double keep_out = minBallOutsideDistance(opt.ball_radius);
+  ColorVec field_sum;
+  int field_n = 0;
+  const double margin = 50;
+  for (int i = 0; i < n_strong; ++i) {  // never a weak peak
+    const FrameBlob& b = blobs[i];
+    if (!b.valid || b.robot >= 0) continue;
+    const FieldMm p = b.at_ball;
+    if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
+        p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
+      continue;
+    // Against every class, the blob counts with the colors it may have
+    // had before a channel clipped (an overexposed ball looks yellowish).
+    const ClippedColor seen(b.rgb);
+    if (seen.saturated()) continue;
+    // A streak is the object's color mixed with the carpet it crossed:
+    // it is compared with each class's mixing line from the field color.
+    const ColorVec& field_color = frame_color[kField];
+    auto classDistance = [&](const ColorVec& c) {
+      return b.streak ? streakColorDistance(seen, field_color, c) : seen.distance(c);
+    };
+    float d_or = classDistance(orange);
+    if (color_map.valid()) d_or = std::min(d_or, classDistance(mapped_orange));
+    float d_neg = std::numeric_limits<float>::max();
+    int nearest_neg = kField;
+    for (int k : negatives) {
+      const float d = k == kField ? seen.distance(field_color) : classDistance(frame_color[k]);
+      if (d < d_neg) d_neg = d, nearest_neg = k;
+    }
+    if (d_or >= d_neg) {
+      if (nearest_neg == kField && !b.streak) {
+        for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
+        ++field_n;
+      }
+      continue;
+    }
+    // Rules: at least 80 % of the ball is outside every robot's top.
+    bool inside = false;
+    for (const auto& r : robots) {
+      if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
+      if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) {
+        inside = true;
+        break;
+      }
+    }
+    if (inside) continue;
+    const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
+    const double color_conf = std::min(1.0, margin_ratio / 0.3);
+    // A streak's score is a shape measure of its own scale (streak_score.h).
+    const double strength =
+        b.streak ? std::min(1.0, b.score / kStreakFullStrength)
+                 : (strength_ref > 0 ? std::min(1.0, b.score / (0.4 * strength_ref)) : 1.0);
+    BallCandidate c;
+    c.blob = i;
+    c.pos = p;
+    double temporal = 1.0;
+    if (tracking && have_frame && !new_scene) {
+      temporal = 0.85;
+      double best = std::numeric_limits<double>::max();
+      for (size_t k = 0; k < ball_tracks.size(); ++k) {
+        const BallTrack& bt = ball_tracks[k];
+        double d = dist(p, bt.predicted);
+        if (d >= bt.gate) {
+          // Kicked: ranked behind any candidate on the predicted course.
+          const double from_last = dist(p, bt.pos[1]);
+          if (from_last >= bt.kick_gate) continue;
+          d = bt.gate + from_last;
+        }
+        if (d < best) best = d, c.track = static_cast<int>(k);
+      }
+      if (c.track >= 0) temporal = 1.0;
+    }
+    c.confidence = color_conf * strength * temporal;
+    if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
+  }
+  std::sort(ball_cands.begin(), ball_cands.end(),
+            [](const BallCandidate& a, const BallCandidate& b) { return a.confidence > b.confidence; });
+  // One ball per place: weaker candidates within a ball diameter go.
+  int kept = 0;
+  for (size_t i = 0; i < ball_cands.size(); ++i) {
+    bool dup = false;
+    for (int j = 0; j < kept && !dup; ++j)
+      dup = dist(ball_cands[i].pos, ball_cands[j].pos) < 4 * opt.ball_radius;
+    if (!dup && kept < opt.max_balls) ball_cands[kept++] = ball_cands[i];
+  }
+  ball_cands.resize(kept);
+  // A streak is trusted where it continues a ball track (on its course or
+  // kicked from a robot) or where nothing else in the frame is a ball: a
+  // colored region that stands out is weaker evidence than a round blob.
+  bool round_ball = false;
+  for (const auto& c : ball_cands) round_ball |= !blobs[c.blob].streak;
+  if (round_ball) {
+    ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
+                                    [&](const BallCandidate& c) { return blobs[c.blob].streak && c.track < 0; }),
+                     ball_cands.end());
+  }
+
+  // Learn orange from a convincing ball, the field from the clutter.
+  const float fp = static_cast<float>(opt.retention_force);
+  const float fr = static_cast<float>(opt.reference_force);
+  // (A streak's color is diluted by the carpet it passed over.)
+  if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && !blobs[ball_cands[0].blob].streak)
+    classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
+  if (field_n > 0) {
+    for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
+    classes[kField].update(field_sum, fp, fr);
+  }
+
+  if (tracking) {
+    for (auto& c : ball_cands) {
+      if (c.track >= 0 && !ball_tracks[c.track].confirmed) {
+        BallTrack& bt = ball_tracks[c.track];
+        bt.pos[0] = bt.pos[1];
+        bt.t[0] = bt.t[1];
+        bt.pos[1] = c.pos;
+        bt.t[1] = t;
+        bt.history = 2;
+        ++bt.hits;
+        bt.confirmed = true;
+      } else {
+        c.track = -1;
+      }
+    }
+    // Unconfirmed ball tracks survive a short gap (flicker, occlusion).
+    ball_tracks.erase(std::remove_if(ball_tracks.begin(), ball_tracks.end(),
+                                     [&](const BallTrack& bt) {
+                                       return !bt.confirmed && t - bt.t[1] > 0.1;
+                                     }),
+                      ball_tracks.end());
+    for (const auto& c : ball_cands) {
+      if (c.track >= 0 || ball_tracks.size() >= 16) continue;
+      BallTrack bt;
+      bt.pos[1] = c.pos;
+      bt.t[1] = t;
+      bt.history = 1;
+      bt.hits = 1;
+      bt.confirmed = true;
+      ball_tracks.push_back(bt);
+    }
+  }
+
+  const double plane = plane_height;
+  for (const auto& c : ball_cands) {
+    BallDetection d;
+    d.confidence = static_cast<float>(std::clamp(c.confidence, 0.0, 1.0));
+    const FieldMm at_plane = raw_positions[c.blob];
+    const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    std::optional<FieldPoint> fp3;
+    if (px) fp3 = camera.imageToField(*px, opt.ball_radius);
+    d.position = fp3 ? FieldPoint{fp3->x, fp3->y, opt.ball_radius}
+                     : FieldPoint{c.pos.x, c.pos.y, opt.ball_radius};
+    if (px) d.pixel = *px;
+    out.balls.push_back(d);
+  }
+}
+
+}  // namespace dv

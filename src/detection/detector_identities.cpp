@@ -1,0 +1,186 @@
+#include "detection/detector_impl.h"
+
+namespace dv {
+
+TwoMeansResult Detector::Impl::clusterCenters() {
+  samples.clear();
+  for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
+  labels.resize(samples.size());
+  const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
+  const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
+  return twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+}
+
+int Detector::Impl::dropImplausibleCenters() {
+  const int nr = static_cast<int>(robots.size());
+  if (nr == 0) return 0;
+  const auto res = clusterCenters();
+  int kept = 0;
+  for (int i = 0; i < nr; ++i) {
+    const ColorVec& c = samples[i];
+    const float d_team = colorDistance(c, res.mean[labels[i]]);
+    const float d_bg = std::min(colorDistance(c, classes[kField].color),
+                                colorDistance(c, classes[kWhite].color));
+    if (d_bg < d_team) {
+      for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
+      blobs[robots[i].blob[0]].implausible_center = true;
+      continue;
+    }
+    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = kept;
+    robots[kept++] = robots[i];
+  }
+  robots.resize(kept);
+  return nr - kept;
+}
+
+void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
+  const float fp = static_cast<float>(opt.retention_force);
+  const float fr = static_cast<float>(opt.reference_force);
+  const int cls[2] = {a, b};
+  for (int k = 0; k < 2; ++k) {
+    if (r.count[k] > 0) {
+      frame_seen[cls[k]] = true;
+      frame_color[cls[k]] = r.mean[k];
+      classes[cls[k]].update(r.mean[k], fp, fr);
+    }
+  }
+}
+
+void Detector::Impl::classifyRobots() {
+  for (int k = 0; k < kNumClasses; ++k) frame_color[k] = classes[k].color, frame_seen[k] = false;
+  const int nr = static_cast<int>(robots.size());
+  if (nr == 0) return;
+
+  // Teams: center blobs, yellow vs blue; green and pink are external.
+  {
+    const auto res = clusterCenters();
+    for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
+    learnClass(kYellow, kBlue, res);
+  }
+
+  // Side blobs of all robots: green vs pink; the team colors are external.
+  // Weak peaks' colors are too noisy to learn from.
+  samples.clear();
+  for (const auto& r : robots)
+    for (int i = 1; i < r.n; ++i)
+      if (!blobs[r.blob[i]].weak) samples.push_back(blobs[r.blob[i]].color);
+  labels.resize(samples.size());
+  {
+    const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
+    const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
+    const auto res =
+        twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+    // This frame's side colors seed the per-robot clustering.
+    const ColorVec green = res.count[0] > 0 ? res.mean[0] : classes[kGreen].color;
+    const ColorVec pink = res.count[1] > 0 ? res.mean[1] : classes[kPink].color;
+    learnClass(kGreen, kPink, res);
+    frame_color[kGreen] = green;
+    frame_color[kPink] = pink;
+  }
+
+  // Per robot: its own side blobs, against its own center color; then its
+  // weak sides by the nearer of its own two side colors (or the frame's
+  // where it shows one only), when clearly nearer.
+  for (auto& r : robots) {
+    ColorVec local[4];
+    uint8_t lab[4];
+    int side_of[4];
+    int m = 0;
+    for (int i = 1; i < r.n; ++i)
+      if (!blobs[r.blob[i]].weak) side_of[m] = i, local[m++] = blobs[r.blob[i]].color;
+    const ColorVec prior[2] = {frame_color[kGreen], frame_color[kPink]};
+    const ColorVec ext[1] = {blobs[r.blob[0]].color};
+    const TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
+    std::array<MarkerColor, 4> colors;
+    colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
+    r.seen_sides = 0;
+    for (int i = 0; i < m; ++i) {
+      const int slot = r.slot[side_of[i]];
+      colors[slot - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides |= static_cast<uint8_t>(1u << (slot - 1));
+    }
+    const ColorVec green = res.count[0] > 0 ? res.mean[0] : frame_color[kGreen];
+    const ColorVec pink = res.count[1] > 0 ? res.mean[1] : frame_color[kPink];
+    for (int i = 1; i < r.n; ++i) {
+      if (!blobs[r.blob[i]].weak) continue;
+      const int label = weakSideColor(blobs[r.blob[i]].color, green, pink,
+                                      static_cast<float>(opt.weak_color_margin));
+      if (label < 0) continue;
+      colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
+    }
+    if (r.seen_sides != 0xF) probeMissingSides(r, green, pink, colors);
+    r.colors = colors;
+    r.id = patternId(colors);
+  }
+  // A robot missing side blobs has two (one missing) or four (two, at the
+  // image border) possible ids; ids are unique per team, so the ids fully
+  // seen teammates hold are ruled out. The guess is the first one left,
+  // the missing blobs taken as green before pink; the id is known when
+  // one is left.
+  for (auto& r : robots) {
+    r.id_known = r.fullPattern();
+    if (r.fullPattern()) continue;
+    int missing[4], m = 0;
+    for (int s = 0; s < 4; ++s)
+      if (!(r.seen_sides >> s & 1)) missing[m++] = s;
+    auto taken = [&](int id) {
+      for (const auto& o : robots)
+        if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
+      return false;
+    };
+    int free = 0;
+    std::array<MarkerColor, 4> guess = r.colors;
+    for (int pinks = 0; pinks < (1 << m); ++pinks) {
+      auto c = r.colors;
+      for (int i = 0; i < m; ++i) c[missing[i]] = pinks >> i & 1 ? MarkerColor::Pink : MarkerColor::Green;
+      if (taken(patternId(c))) continue;
+      if (free++ == 0) guess = c;
+    }
+    r.colors = guess;
+    r.id = patternId(guess);
+    r.id_known = free == 1;
+  }
+
+  // How this camera shows the pattern colors tells where its orange is.
+  ColorVec ref[4], seen[4];
+  int n = 0;
+  for (int k : {kYellow, kBlue, kGreen, kPink})
+    if (frame_seen[k]) ref[n] = classes[k].reference, seen[n] = frame_color[k], ++n;
+  color_map.fit(ref, seen, n);
+}
+
+void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,
+                       std::array<MarkerColor, 4>& colors) const {
+  if (!opt.probe_missing_sides || !frame_view.image) return;
+  Hypothesis at_team = r;
+  refit(at_team);
+  const double z = teamHeight(r.team);
+  for (int s = 1; s < kPatternSlots; ++s) {
+    if (r.seen_sides >> (s - 1) & 1) continue;
+    const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+    const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
+    if (seen.share < opt.min_probe_share) continue;
+    const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
+                                    static_cast<float>(opt.weak_color_margin));
+    if (label < 0) continue;
+    colors[s - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    r.seen_sides |= static_cast<uint8_t>(1u << (s - 1));
+  }
+}
+
+void Detector::Impl::refit(Hypothesis& h) const {
+  FieldMm pts[kPatternSlots];
+  int slots[kPatternSlots];
+  const int t = h.team == Team::Yellow ? 0 : 1;
+  const bool blobs_only = weakCount(h) > 0 && h.n - weakCount(h) >= kPatternSlots - 1;
+  int n = 0;
+  for (int i = 0; i < h.n; ++i) {
+    if (blobs_only && blobs[h.blob[i]].weak) continue;
+    pts[n] = blobs[h.blob[i]].at_team[t];
+    slots[n++] = h.slot[i];
+  }
+  h.pose = fitPattern(pts, slots, n, opt.score_scale);
+}
+
+}  // namespace dv

@@ -1,0 +1,96 @@
+// Color conditions a venue brings, one at a time on the top-down half field
+// (11 + 11 robots at random ids and a ball, each frame alone, shipped
+// defaults): global color casts on both axes of the white balance, saturation
+// and gamma of the camera's color processing, over-exposure with clipped
+// channels, and the spread of marker and ball shades teams and the league
+// actually use. The class colors must come from the frame, so every one of
+// these holds with the same defaults. CI runs one placement at 1224 x 1024;
+// DV_SCENE_FULL=1 runs 4 placements at both sizes and prints the table.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "scene_conditions.h"
+
+namespace dv {
+namespace {
+
+using namespace dv::test;
+
+void cast(SceneSpec& s, Rgb white_balance, double saturation = 1, double gamma = 1) {
+  s.lighting.white_balance = white_balance;
+  s.lighting.saturation = saturation;
+  s.lighting.gamma = gamma;
+}
+
+const Rgb kTungsten{1.6, 1.0, 0.6}, kColdLed{0.7, 1.0, 1.7};
+
+const std::vector<Condition>& conditions() {
+  static const std::vector<Condition> list = {
+      // --- casts: the white balance on its warm-cold and green-magenta axes
+      {"wb_tungsten", [](SceneSpec& s, int) { cast(s, kTungsten); }},
+      {"wb_cold_led", [](SceneSpec& s, int) { cast(s, kColdLed); }},
+      {"wb_magenta", [](SceneSpec& s, int) { cast(s, {1.2, 0.8, 1.2}); }},
+      {"wb_green", [](SceneSpec& s, int) { cast(s, {0.8, 1.3, 0.8}); }},
+      // A mis-set camera under cold LED light (an outsider's scene that lost
+      // the whole yellow team and the ball).
+      {"wb_cold_desaturated", [](SceneSpec& s, int) { cast(s, {0.72, 1.0, 1.62}, 0.55); }},
+      // --- the camera's color processing
+      {"saturation_0.4", [](SceneSpec& s, int) { cast(s, {1, 1, 1}, 0.4); }},
+      {"saturation_1.3", [](SceneSpec& s, int) { cast(s, {1, 1, 1}, 1.3); }},
+      {"gamma_0.6", [](SceneSpec& s, int) { cast(s, {1, 1, 1}, 1, 0.6); }},
+      {"gamma_1.6", [](SceneSpec& s, int) { cast(s, {1, 1, 1}, 1, 1.6); }},
+      {"tungsten_saturation_0.4", [](SceneSpec& s, int) { cast(s, kTungsten, 0.4); }},
+      {"cold_saturation_0.4_gamma_0.6", [](SceneSpec& s, int) { cast(s, kColdLed, 0.4, 0.6); }},
+      {"cold_gamma_1.6", [](SceneSpec& s, int) { cast(s, kColdLed, 1, 1.6); }},
+      // --- over-exposure: channels clip, so clipped colors lose their hue
+      {"overexposed_2x", [](SceneSpec& s, int) { s.lighting.exposure = 2.0; }},
+      {"cold_overexposed", [](SceneSpec& s, int) {
+         cast(s, kColdLed);
+         s.lighting.exposure = 1.5;
+       }},
+      // --- marker shades (each with the other three at their defaults)
+      {"pink_light_rose", [](SceneSpec& s, int) { s.materials.pink = {250, 175, 205}; }},
+      {"pink_magenta", [](SceneSpec& s, int) { s.materials.pink = {225, 30, 200}; }},
+      {"green_yellow_green", [](SceneSpec& s, int) { s.materials.green = {150, 215, 40}; }},
+      {"green_teal", [](SceneSpec& s, int) { s.materials.green = {20, 175, 150}; }},
+      {"yellow_lemon", [](SceneSpec& s, int) { s.materials.yellow = {245, 245, 80}; }},
+      {"yellow_amber", [](SceneSpec& s, int) { s.materials.yellow = {250, 165, 0}; }},
+      {"blue_sky", [](SceneSpec& s, int) { s.materials.blue = {90, 175, 245}; }},
+      {"blue_navy", [](SceneSpec& s, int) { s.materials.blue = {20, 30, 125}; }},
+      // --- ball shades
+      {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
+      {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},
+  };
+  return list;
+}
+
+class SceneColorSweep : public ::testing::TestWithParam<size_t> {};
+
+// Columns as scene_sweep_test.cpp's table.
+TEST_P(SceneColorSweep, BothTeamsEveryIdAndTheBallUnderAnyColors) {
+  const Condition& c = conditions()[GetParam()];
+  const int placements = fullRun() ? 4 : 1;
+  for (bool half : {true, false}) {
+    if (!half && !fullRun()) continue;
+    SceneScore s;
+    for (int k = 0; k < placements; ++k) test::score(conditionScene(c, k, half), 1, true, s);
+    printRow(c.name, half ? "1224x1024" : "2448x2048", s);
+    SCOPED_TRACE(std::string(c.name) + (half ? " 1224x1024" : " 2448x2048"));
+    EXPECT_GE(s.precision(), 0.98);
+    EXPECT_GE(s.detectableRecall(), 0.98);
+    EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
+    EXPECT_GE(s.ballRecall(), 0.99);
+    EXPECT_GE(s.ballPrecision(), 0.98);
+    EXPECT_GE(s.recall(), half ? 0.8 : 0.97);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0, conditions().size()),
+                         [](const ::testing::TestParamInfo<size_t>& info) {
+                           return conditionTestName(conditions()[info.param].name);
+                         });
+
+}  // namespace
+}  // namespace dv
