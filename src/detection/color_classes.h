@@ -30,6 +30,16 @@ inline float colorDistance(const ColorVec& a, const ColorVec& b) {
   return std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
 }
 
+// Hue angle (rad, (-pi, pi]: 0 red, about +1 yellow, 2.1 green, -2.1 blue,
+// -0.6 pink) of an RGB color (or a ColorVec, which is proportional to one)
+// seen under white `white`: each channel divided by the white's first, so a
+// global cast moves no hue. The order of the hues of two colors also
+// survives a camera's saturation and gamma.
+inline float colorHue(const float rgb[3], const float white[3]) {
+  const float r = rgb[0] / white[0], g = rgb[1] / white[1], b = rgb[2] / white[2];
+  return std::atan2(0.8660254f * (g - b), r - 0.5f * (g + b));
+}
+
 inline ColorVec colorMix(const ColorVec& a, float wa, const ColorVec& b, float wb,
                          const ColorVec& c, float wc) {
   ColorVec r;

@@ -81,6 +81,14 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     ball_tracks.clear();
   }
   plane_height = list.plane_height;
+  // White is what the lines show in this frame, never a fixed color.
+  neutral = list.neutral;
+  min_saturation = list.min_saturation;
+  if (neutral.valid) {
+    classes[kWhite].color = colorFeature(neutral.rgb[0], neutral.rgb[1], neutral.rgb[2]);
+  } else {
+    classes[kWhite].reset();
+  }
   raw_positions.clear();
   for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
   prepare(list);

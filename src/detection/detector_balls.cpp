@@ -14,6 +14,28 @@ FieldMm Detector::Impl::reflectAtWalls(FieldMm from, FieldMm p) const {
           mirror(from.y, p.y, ball_area.y_min + r, ball_area.y_max - r)};
 }
 
+float Detector::Impl::explainedByNone(const float rgb[3], const ClippedColor& seen,
+                                      float min_brightness) const {
+  if (!frame_seen[kYellow] || rgb[0] + rgb[1] + rgb[2] < min_brightness) return 0;
+  auto saturation = [](const float* c) {
+    const float hi = std::max({c[0], c[1], c[2]}), lo = std::min({c[0], c[1], c[2]});
+    return hi > 0 ? (hi - lo) / hi : 0.f;
+  };
+  if (saturation(rgb) < kBallSaturationShare * saturation(frame_color[kYellow].c)) return 0;
+  const float unit[3] = {1, 1, 1};
+  const float* white = neutral.valid ? neutral.rgb : unit;
+  const float h = colorHue(rgb, white);
+  const float yellow = colorHue(frame_color[kYellow].c, white);
+  const float pink = std::min(0.f, colorHue(frame_color[kPink].c, white));
+  if (!(h > pink && h < yellow)) return 0;
+  float rel = std::numeric_limits<float>::max();
+  for (int k : {kYellow, kPink, kWhite, kField}) {
+    const float radius = std::max(kClassSpreads * frame_spread[k], kMinClassRadius);
+    rel = std::min(rel, seen.distance(frame_color[k]) / radius);
+  }
+  return rel;
+}
+
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
   // Learned negatives: everything a ball candidate must be farther from
@@ -31,6 +53,19 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     auto mid = score_buf.begin() + score_buf.size() / 2;
     std::nth_element(score_buf.begin(), mid, score_buf.end());
     strength_ref = *mid;
+  }
+  // A ball no class explains is at least as bright as a share of the
+  // robots' center blobs (darker peaks lie on robot tops).
+  score_buf.clear();
+  for (const auto& r : robots) {
+    const float* c = blobs[r.blob[0]].rgb;
+    score_buf.push_back(c[0] + c[1] + c[2]);
+  }
+  float min_ball_brightness = std::numeric_limits<float>::max();
+  if (!score_buf.empty()) {
+    auto mid = score_buf.begin() + score_buf.size() / 2;
+    std::nth_element(score_buf.begin(), mid, score_buf.end());
+    min_ball_brightness = kTopBrightness * *mid;
   }
   // Ball predictions: straight on from the last two frames, mirrored at
   // the walls it would cross.
@@ -84,7 +119,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       const float d = k == kField ? seen.distance(field_color) : classDistance(frame_color[k]);
       if (d < d_neg) d_neg = d, nearest_neg = k;
     }
-    if (d_or >= d_neg) {
+    // Orange is also whatever round blob none of the pattern classes
+    // explains, on the warm side between the frame's pink and yellow
+    // (explainedByNone): a ball of another shade than the one expected.
+    const float unexplained = b.streak ? 0.f : explainedByNone(b.rgb, seen, min_ball_brightness);
+    if (d_or >= d_neg && unexplained <= 1) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
         ++field_n;
@@ -102,7 +141,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     if (inside) continue;
     const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
-    const double color_conf = std::min(1.0, margin_ratio / 0.3);
+    const double color_conf =
+        std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength)

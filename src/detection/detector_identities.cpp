@@ -2,13 +2,33 @@
 
 namespace dv {
 
+void Detector::Impl::orderByRatio(TwoMeansResult& r, int num, int den) {
+  const int n = static_cast<int>(samples.size());
+  auto ratio = [&](const float* c) { return c[num] / std::max(c[den], 1e-3f); };
+  bool swap = false;
+  if (r.count[0] > 0 && r.count[1] > 0) {
+    swap = ratio(r.mean[1].c) < ratio(r.mean[0].c);
+  } else if (neutral.valid && n > 0) {
+    // One cluster: which side of the lines' white it lies on.
+    const int cls = r.count[0] > 0 ? 0 : 1;
+    const bool above = ratio(r.mean[cls].c) > ratio(neutral.rgb);
+    swap = above != (cls == 1);
+  }
+  if (!swap) return;
+  std::swap(r.mean[0], r.mean[1]);
+  std::swap(r.count[0], r.count[1]);
+  for (int i = 0; i < n; ++i) labels[i] = static_cast<uint8_t>(1 - labels[i]);
+}
+
 TwoMeansResult Detector::Impl::clusterCenters() {
   samples.clear();
   for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
   labels.resize(samples.size());
   const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
   const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
-  return twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  TwoMeansResult r = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  orderByRatio(r, 2, 1);  // blue over green: blue's far above yellow's
+  return r;
 }
 
 int Detector::Impl::dropImplausibleCenters() {
@@ -37,7 +57,15 @@ void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
   const float fp = static_cast<float>(opt.retention_force);
   const float fr = static_cast<float>(opt.reference_force);
   const int cls[2] = {a, b};
+  // The spread of each class's samples (`samples` and `labels` are
+  // twoMeans's): how far a color may lie from the class and still be it.
+  double sum[2] = {0, 0};
+  for (size_t i = 0; i < samples.size() && i < labels.size(); ++i) {
+    const float d = colorDistance(samples[i], r.mean[labels[i]]);
+    sum[labels[i]] += d * d;
+  }
   for (int k = 0; k < 2; ++k) {
+    frame_spread[cls[k]] = r.count[k] > 1 ? static_cast<float>(std::sqrt(sum[k] / r.count[k])) : 0.f;
     if (r.count[k] > 0) {
       frame_seen[cls[k]] = true;
       frame_color[cls[k]] = r.mean[k];
@@ -47,7 +75,8 @@ void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
 }
 
 void Detector::Impl::classifyRobots() {
-  for (int k = 0; k < kNumClasses; ++k) frame_color[k] = classes[k].color, frame_seen[k] = false;
+  for (int k = 0; k < kNumClasses; ++k)
+    frame_color[k] = classes[k].color, frame_seen[k] = false, frame_spread[k] = 0;
   const int nr = static_cast<int>(robots.size());
   if (nr == 0) return;
 
@@ -68,8 +97,8 @@ void Detector::Impl::classifyRobots() {
   {
     const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
     const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
-    const auto res =
-        twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+    auto res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+    orderByRatio(res, 0, 1);  // red over green: pink's far above green's
     // This frame's side colors seed the per-robot clustering.
     const ColorVec green = res.count[0] > 0 ? res.mean[0] : classes[kGreen].color;
     const ColorVec pink = res.count[1] > 0 ? res.mean[1] : classes[kPink].color;

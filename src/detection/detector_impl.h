@@ -57,6 +57,13 @@ constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
 // Robots a frame and the tracks must both have before their overlap can say
 // whether the frame continues the tracked scene.
 constexpr int kSceneCheckMinRobots = 4;
+// A class reaches kClassSpreads times the spread of its samples in this
+// frame, at least kMinClassRadius (chromaticity units of color_classes.h:
+// one or two robots give no spread; a blob's mean color varies by a few).
+constexpr float kClassSpreads = 3.f, kMinClassRadius = 8.f;
+// A ball of an unexpected shade is at least this share as saturated as the
+// frame's yellow (line and carpet mixes are far less).
+constexpr float kBallSaturationShare = 0.5f;
 // Streak score at which a fast-ball candidate counts at full strength.
 constexpr double kStreakFullStrength = 0.6;
 
@@ -169,6 +176,9 @@ struct Detector::Impl {
   ColorClass classes[kNumClasses];
   ColorVec frame_color[kNumClasses];  // this frame's class colors
   bool frame_seen[kNumClasses];       // class had samples in this frame
+  float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
+  NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
+  float min_saturation = 0;
   ColorMap color_map;                 // references -> this camera's colors
 
   std::vector<FrameBlob> blobs;
@@ -317,6 +327,12 @@ struct Detector::Impl {
   // Center blob colors of the robot hypotheses in two classes, yellow vs
   // blue, with green and pink as the external colors (eq. 5.24); the labels
   // are left in `labels`.
+  // Which of two clusters of `samples` (labels in `labels`) is which class
+  // follows from an order no global cast, saturation or gamma changes: the
+  // ratio of channel num to channel den is the larger in class 1 (blue's
+  // blue to green, pink's red to green). One cluster is class 1 when its
+  // ratio is above the lines' white's. Without the lines, the priors decide.
+  void orderByRatio(TwoMeansResult& r, int num, int den);
   TwoMeansResult clusterCenters();
 
   // Drops the robots whose center looks like the field or a line more than
@@ -376,6 +392,14 @@ struct Detector::Impl {
 
   // --------------------------------------------------------------- balls
   void findBalls(double t, bool tracking, Detections& out);
+  // For a blob of mean color rgb (seen: the same, clipping considered):
+  // 0 unless yellow robots were seen, it is at least min_brightness
+  // (r + g + b) bright, about as saturated as the yellow class
+  // (kBallSaturationShare) and its hue lies between this frame's pink and
+  // yellow (through red, under the lines' white); else its distance to
+  // the nearest of the yellow, pink, white and field classes in units of
+  // that class's reach (above 1: none explains it).
+  float explainedByNone(const float rgb[3], const ClippedColor& seen, float min_brightness) const;
 
   std::vector<FieldMm> raw_positions;
   double plane_height = 150;

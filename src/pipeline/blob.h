@@ -18,6 +18,15 @@ struct Blob {
   bool streak = false;
 };
 
+// The color of the field's white lines in one frame (pipeline/
+// blob_color_gate.h), 0..255 per channel: the frame's neutral, from which
+// the camera's color cast is read. Valid when enough line samples were seen.
+struct NeutralColor {
+  bool valid = false;
+  float rgb[3] = {0, 0, 0};
+  int samples = 0;  // line samples the estimate rests on
+};
+
 // Blobs of one frame, strongest first. Capacity is reserved once per camera.
 struct BlobList {
   double plane_height = 150;  // mm, the plane the grid lies on
@@ -27,6 +36,10 @@ struct BlobList {
   // they are mostly carpet texture and noise; the detector takes one only
   // where a robot pattern of strong blobs predicts a side blob.
   std::vector<Blob> weak;
+  NeutralColor neutral;
+  // The saturation (max - min) / max, after the lines' white balance, a
+  // blob needed in this frame (blob_color_gate.h).
+  float min_saturation = 0;
 };
 
 }  // namespace dv

@@ -1,6 +1,7 @@
 #include "pipeline/cpu_pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "pipeline/bayer_full.h"
 #include "pipeline/bayer_sampling.h"
 #include "pipeline/bayer_subsample.h"
+#include "pipeline/blob_color_gate.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/fine_peak.h"
 #include "pipeline/kernels.h"
@@ -164,10 +166,12 @@ struct CpuPipeline::Impl {
 
   StageTimes times;
   std::string error;
+  BlobColorGate color_gate;  // which peaks are colored enough (blob_color_gate.h)
+  std::vector<std::array<float, 3>> found_rgb;  // per strong found peak (coarse search)
 
   Impl(const CameraModel& cam, const FieldModel& field, const PipelineOptions& o,
        const RectifiedGrid* fixed_grid = nullptr)
-      : camera(cam), opt(o), pool(o.threads) {
+      : camera(cam), opt(o), pool(o.threads), color_gate(cam, field) {
     const auto& c = camera.calibration();
     image_w = static_cast<int>(c.image_width);
     image_h = static_cast<int>(c.image_height);
@@ -347,6 +351,7 @@ struct CpuPipeline::Impl {
     const auto t0 = std::chrono::steady_clock::now();
     last_raw = raw;
     luma_mean = coarse->luma_mean;
+    color_gate.adoptNeutral(coarse->color_gate);
     // Regions of this grid around the coarse pass's peaks: each peak's
     // square of kWindowReachMm joins a region it overlaps while that stays
     // within the largest window (a robot's blobs make one region), else
@@ -422,7 +427,18 @@ struct CpuPipeline::Impl {
       if (b.streak) streak_centers.push_back(grid.toGrid(b.position));
     out.blobs.clear();
     out.weak.clear();
+    // The frame's saturation scale from its strong peaks (blob_color_gate.h).
+    found_rgb.clear();
+    color_gate.beginPeaks();
     for (const FinePeakFound& f : found_peaks) {
+      if (!(f.ratio > threshold)) break;  // strongest first
+      found_rgb.emplace_back();
+      meanColor(f.at, found_rgb.back().data());
+      color_gate.addPeak(found_rgb.back().data());
+    }
+    color_gate.endPeaks();
+    for (size_t i = 0; i < found_peaks.size(); ++i) {
+      const FinePeakFound& f = found_peaks[i];
       const bool strong = f.ratio > threshold;
       if (spacing.nearKept(f.x, f.y)) continue;
       if (strong ? static_cast<int>(out.blobs.size()) >= opt.max_blobs
@@ -432,7 +448,11 @@ struct CpuPipeline::Impl {
       b.grid = f.at;
       b.position = grid.toField(f.at);
       b.score = f.ratio;
-      meanColor(b.grid, b.rgb);
+      if (strong) {
+        std::copy(found_rgb[i].begin(), found_rgb[i].end(), b.rgb);
+      } else {
+        meanColor(b.grid, b.rgb);
+      }
       if (!saturated(b)) continue;
       (strong ? out.blobs : out.weak).push_back(b);
       if (strong) reach.keep(b.grid.x, b.grid.y);
@@ -466,8 +486,10 @@ struct CpuPipeline::Impl {
     for (const FinePeak::Streak& s : fine_streaks) {
       if (nearBlob(out.blobs, streakPeakCenter(streak, s.peak), grid.scale)) continue;
       const Blob b = streakBlob(s.at, s.peak.score);
-      if (acceptStreakBlob(out.blobs, b, grid.scale)) out.blobs.push_back(b);
+      if (acceptStreakBlob(out.blobs, b, grid.scale, color_gate)) out.blobs.push_back(b);
     }
+    out.neutral = color_gate.neutral();
+    out.min_saturation = color_gate.threshold();
     times = coarse->times;
     times.bayer_ms += bin_ms;
     times.peaks_ms += msSince(t0);
@@ -849,6 +871,8 @@ struct CpuPipeline::Impl {
     }
     error.clear();
     if (coarse) return coarseProcess(raw, out);
+    color_gate.measureNeutral(raw, opt.bayer);
+    out.neutral = color_gate.neutral();
     const auto t_start = std::chrono::steady_clock::now();
     auto t0 = t_start;
 
@@ -984,11 +1008,23 @@ struct CpuPipeline::Impl {
         spacing.keep(blob.grid.x, blob.grid.y);
       }
     };
+    // The frame's saturation scale from its strong peaks (blob_color_gate.h).
+    color_gate.beginPeaks();
     if (from_bands) {
+      for (const Blob& b : merged_blobs) color_gate.addPeak(b.rgb);
+      color_gate.endPeaks();
       selectMade(max_blobs, out.blobs, std::numeric_limits<size_t>::max());
     } else {
-      select(gather(max_blobs), out.blobs, std::numeric_limits<size_t>::max());
+      const size_t keep = gather(max_blobs);
+      for (size_t i = 0; i < keep; ++i) {
+        float rgb[3];
+        meanColor(interpolatePeak(score.data(), gw, merged[i].x, merged[i].y), rgb);
+        color_gate.addPeak(rgb);
+      }
+      color_gate.endPeaks();
+      select(keep, out.blobs, std::numeric_limits<size_t>::max());
     }
+    out.min_saturation = color_gate.threshold();
 
     // Weak peaks only around the blobs (hysteresis): where a side blob of a
     // robot whose center blob was found may lie.
@@ -1079,7 +1115,7 @@ struct CpuPipeline::Impl {
       const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
       const Blob blob = streakBlob(
           refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o), p.score);
-      if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale)) out.blobs.push_back(blob);
+      if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale, color_gate)) out.blobs.push_back(blob);
     }
   }
 
@@ -1097,11 +1133,7 @@ struct CpuPipeline::Impl {
   // Every blob the league uses is strongly colored; a near-neutral mean
   // color is a white line crossing or a gray feature, whose chroma edges
   // came from the carpet around it.
-  static bool saturated(const Blob& blob) {
-    const float hi = std::max({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-    const float lo = std::min({blob.rgb[0], blob.rgb[1], blob.rgb[2]});
-    return !(hi - lo < kMinBlobSaturation * (hi + 1));
-  }
+  bool saturated(const Blob& blob) const { return color_gate.colored(blob.rgb); }
 
   // Bilinear RGB of grid cell k from the last frame (co-sited samples).
   void sampleRgb(size_t k, float rgb[3]) const {

@@ -289,7 +289,8 @@ bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale, doubl
   return false;
 }
 
-bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double grid_scale) {
+bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double grid_scale,
+                      const BlobColorGate& colors) {
   const double near2 = std::pow(kStreakBlobDistanceMm / grid_scale, 2);
   int streaks = 0;
   for (const Blob& b : blobs) {
@@ -298,9 +299,7 @@ bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double
     streaks += b.streak;
   }
   if (streaks >= kMaxStreakBlobs) return false;
-  const float hi = std::max({streak.rgb[0], streak.rgb[1], streak.rgb[2]});
-  const float lo = std::min({streak.rgb[0], streak.rgb[1], streak.rgb[2]});
-  return hi - lo >= kMinBlobSaturation * (hi + 1);
+  return colors.colored(streak.rgb);
 }
 
 }  // namespace dv

@@ -21,6 +21,7 @@
 
 #include "core/units.h"
 #include "pipeline/blob.h"
+#include "pipeline/blob_color_gate.h"
 #include "pipeline/streak_windows.h"
 
 namespace dv {
@@ -95,8 +96,9 @@ bool nearBlob(const std::vector<Blob>& blobs, GridPx g, double grid_scale,
 
 // Whether a streak blob (position and color set) joins `blobs`: not within
 // kStreakBlobDistanceMm of any blob there (an object the blob score found,
-// or a stronger streak), strongly colored (kMinBlobSaturation, as blobs),
-// and fewer than kMaxStreakBlobs streaks so far. Both backends use it.
-bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double grid_scale);
+// or a stronger streak), colored enough for `colors` (as blobs), and fewer
+// than kMaxStreakBlobs streaks so far. Both backends use it.
+bool acceptStreakBlob(const std::vector<Blob>& blobs, const Blob& streak, double grid_scale,
+                      const BlobColorGate& colors);
 
 }  // namespace dv

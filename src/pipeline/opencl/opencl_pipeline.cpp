@@ -21,7 +21,7 @@ namespace dv {
 
 OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& field,
                                const PipelineOptions& opt, const OclDeviceInfo& device)
-    : camera_(camera), opt_(opt) {
+    : camera_(camera), opt_(opt), color_gate_(camera, field) {
   const auto& c = camera_.calibration();
   const int image_w = static_cast<int>(c.image_width), image_h = static_cast<int>(c.image_height);
   const BayerSamplingChoice sampling = chooseBayerSampling(camera_, field, opt_);
@@ -149,6 +149,16 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   // reach of a blob count, up to max_weak_blobs.
   spacing_.clear();
   reach_.clear();
+  color_gate_.measureNeutral(raw, opt_.bayer);
+  color_gate_.beginPeaks();
+  for (const auto& p : engine_->peaks()) {
+    if (!(p.score > cfg.threshold)) break;  // the strong ones come first
+    const float rgb[3] = {p.r, p.g, p.b};
+    color_gate_.addPeak(rgb);
+  }
+  color_gate_.endPeaks();
+  out.neutral = color_gate_.neutral();
+  out.min_saturation = color_gate_.threshold();
   for (const auto& p : engine_->peaks()) {
     const bool weak = !(p.score > cfg.threshold);
     if (weak && (static_cast<int>(out.weak.size()) >= cfg.max_weak_blobs || !reach_.nearKept(p.cell_x, p.cell_y)))
@@ -159,9 +169,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     b.position = grid_.toField(b.grid);
     b.score = p.score;
     b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
-    const float hi = std::max({b.rgb[0], b.rgb[1], b.rgb[2]});
-    const float lo = std::min({b.rgb[0], b.rgb[1], b.rgb[2]});
-    if (hi - lo < kMinBlobSaturation * (hi + 1)) continue;
+    if (!color_gate_.colored(b.rgb)) continue;
     spacing_.keep(b.grid.x, b.grid.y);
     if (weak) {
       out.weak.push_back(b);
@@ -180,7 +188,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     b.score = p.score;
     b.streak = true;
     b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
-    if (acceptStreakBlob(out.blobs, b, grid_.scale)) out.blobs.push_back(b);
+    if (acceptStreakBlob(out.blobs, b, grid_.scale, color_gate_)) out.blobs.push_back(b);
   }
   const auto& t = engine_->times();
   times_.bayer_ms = t.bayer_ms;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pipeline/backend.h"
+#include "pipeline/blob_color_gate.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/opencl/ocl_engine.h"
 #include "pipeline/streak_score.h"
@@ -46,6 +47,7 @@ class OpenClPipeline final : public PixelPipeline {
   StreakWindows streak_;  // the fast-ball pass's footprint on this grid
   std::unique_ptr<OclEngine> engine_;
   BlobSpacing spacing_;  // one blob per object
+  BlobColorGate color_gate_;  // which peaks are colored enough (blob_color_gate.h)
   BlobSpacing reach_;    // where weak peaks may lie: near a blob
   StageTimes times_;
   std::string error_;

@@ -1,0 +1,139 @@
+#include "pipeline/blob_color_gate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/score_windows.h"
+
+namespace dv {
+namespace {
+
+constexpr double kLineStepMm = 25;      // between line samples
+constexpr int kMaxLinePoints = 600;     // evenly thinned beyond
+constexpr double kImageMarginPx = 3;
+constexpr int kSiteReach = 2;  // px around a line sample searched for each channel's site
+// Line samples on the lines' center: the brightest share of them (a sample
+// beside the center, under a robot or in shadow reads darker).
+constexpr double kBrightShare = 0.25;
+constexpr int kMinNeutralSamples = 8;
+// Of the strong peaks, the share that are most colored sets the frame's
+// saturation scale: in a frame with robots these are pattern dots.
+constexpr double kScaleQuantile = 0.9;
+// A blob must show this share of the frame's scale. Under the shipped
+// colors dots show 0.6..0.9 and line crossings 0.1..0.2, the same ratio in
+// a frame desaturated to 0.4 (dots 0.25..0.4, crossings below 0.08).
+constexpr float kScaleShare = 0.3f;
+constexpr int kMaxPeaksForScale = 2048;
+
+}  // namespace
+
+BlobColorGate::BlobColorGate(const CameraModel& camera, const FieldModel& field) {
+  const int w = camera.calibration().image_width, h = camera.calibration().image_height;
+  auto add = [&](double x, double y) {
+    const auto px = camera.fieldToImage({x, y, 0});
+    if (!px || px->u < kImageMarginPx || px->v < kImageMarginPx || px->u > w - 1 - kImageMarginPx ||
+        px->v > h - 1 - kImageMarginPx)
+      return;
+    points_.push_back(*px);
+  };
+  for (const FieldLine& l : field.lines) {
+    const double len = std::hypot(l.p2.x - l.p1.x, l.p2.y - l.p1.y);
+    const int n = std::max(1, static_cast<int>(len / kLineStepMm));
+    for (int i = 0; i <= n; ++i) add(l.p1.x + (l.p2.x - l.p1.x) * i / n, l.p1.y + (l.p2.y - l.p1.y) * i / n);
+  }
+  for (const FieldArc& a : field.arcs) {
+    double span = a.a2 - a.a1;
+    if (span <= 0) span += 2 * kPi;
+    const int n = std::max(1, static_cast<int>(span * a.radius / kLineStepMm));
+    for (int i = 0; i <= n; ++i) {
+      const double t = a.a1 + span * i / n;
+      add(a.center.x + a.radius * std::cos(t), a.center.y + a.radius * std::sin(t));
+    }
+  }
+  if (static_cast<int>(points_.size()) > kMaxLinePoints) {
+    std::vector<ImagePx> thin;
+    for (int i = 0; i < kMaxLinePoints; ++i) thin.push_back(points_[points_.size() * i / kMaxLinePoints]);
+    points_.swap(thin);
+  }
+  bright_.resize(points_.size());
+  order_.resize(points_.size());
+  rgb_.resize(3 * points_.size());
+  peak_saturation_.reserve(kMaxPeaksForScale);
+  threshold_ = kMinBlobSaturation;
+}
+
+void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
+  neutral_ = {};
+  gain_[0] = gain_[1] = gain_[2] = 1;
+  const int n = static_cast<int>(points_.size());
+  if (n == 0 || raw.empty()) return;
+  const bool bgr = bayer == BayerPattern::None || raw.type() == CV_8UC3;
+  // Red site of the 2x2 cell (x, y parity); blue is diagonal to it.
+  const int rx = bayer == BayerPattern::GRBG || bayer == BayerPattern::BGGR;
+  const int ry = bayer == BayerPattern::GBRG || bayer == BayerPattern::BGGR;
+  for (int i = 0; i < n; ++i) {
+    float* c = &rgb_[3 * i];
+    c[0] = c[1] = c[2] = 0;
+    const int u0 = static_cast<int>(std::lround(points_[i].u)), v0 = static_cast<int>(std::lround(points_[i].v));
+    // Each channel's brightest site within a pixel of the line's center: a
+    // line 2 px wide (1224 x 1024 from 5 m) fills no 2x2 window, but its
+    // center sites are white.
+    for (int v = std::max(0, v0 - kSiteReach); v <= std::min(raw.rows - 1, v0 + kSiteReach); ++v)
+      for (int u = std::max(0, u0 - kSiteReach); u <= std::min(raw.cols - 1, u0 + kSiteReach); ++u) {
+        if (bgr) {
+          const cv::Vec3b p = raw.at<cv::Vec3b>(v, u);
+          c[0] = std::max(c[0], float(p[2])), c[1] = std::max(c[1], float(p[1])), c[2] = std::max(c[2], float(p[0]));
+        } else {
+          const bool xr = (u & 1) == rx, yr = (v & 1) == ry;
+          const int ch = xr && yr ? 0 : (!xr && !yr ? 2 : 1);
+          c[ch] = std::max(c[ch], float(raw.at<uint8_t>(v, u)));
+        }
+      }
+    bright_[i] = order_[i] = c[0] + c[1] + c[2];
+  }
+  const int keep = static_cast<int>(n * kBrightShare);
+  if (keep < kMinNeutralSamples) return;
+  std::nth_element(order_.begin(), order_.begin() + (n - keep), order_.end());
+  const float cut = order_[n - keep];
+  // Per channel, the median over the brightest samples (a robot's marker
+  // on a line is bright too, but rare).
+  for (int k = 0; k < 3; ++k) {
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+      if (bright_[i] >= cut && bright_[i] > 0) order_[m++] = rgb_[3 * i + k];
+    if (m < kMinNeutralSamples) return;
+    std::nth_element(order_.begin(), order_.begin() + m / 2, order_.begin() + m);
+    neutral_.rgb[k] = order_[m / 2];
+    neutral_.samples = m;
+  }
+  const float lo = std::min({neutral_.rgb[0], neutral_.rgb[1], neutral_.rgb[2]});
+  if (lo < 1) return;  // a channel missing: no white balance can be read
+  neutral_.valid = true;
+  for (int k = 0; k < 3; ++k) gain_[k] = neutral_.rgb[1] / neutral_.rgb[k];
+}
+
+void BlobColorGate::adoptNeutral(const BlobColorGate& other) {
+  neutral_ = other.neutral_;
+  for (int k = 0; k < 3; ++k) gain_[k] = other.gain_[k];
+}
+
+float BlobColorGate::saturation(const float rgb[3]) const {
+  const float r = rgb[0] * gain_[0], g = rgb[1] * gain_[1], b = rgb[2] * gain_[2];
+  const float hi = std::max({r, g, b}), lo = std::min({r, g, b});
+  return (hi - lo) / (hi + 1);
+}
+
+void BlobColorGate::addPeak(const float rgb[3]) {
+  if (static_cast<int>(peak_saturation_.size()) < kMaxPeaksForScale) peak_saturation_.push_back(saturation(rgb));
+}
+
+void BlobColorGate::endPeaks() {
+  threshold_ = kMinBlobSaturation;
+  const int n = static_cast<int>(peak_saturation_.size());
+  if (n == 0) return;
+  const int q = std::min(n - 1, static_cast<int>(kScaleQuantile * n));
+  std::nth_element(peak_saturation_.begin(), peak_saturation_.begin() + q, peak_saturation_.end());
+  threshold_ = std::min(kMinBlobSaturation, kScaleShare * peak_saturation_[q]);
+}
+
+}  // namespace dv

@@ -1,0 +1,60 @@
+#pragma once
+// Which peaks are colored enough to be a league blob. Pattern dots and the
+// ball are strongly colored; white line crossings and gray features make
+// blob-shaped chroma edges only from the carpet around them. "Colored" is
+// judged against the frame itself, so that no camera setting moves it:
+//  - the frame's neutral is the color of its white lines (known places on
+//    the field): colors are compared after the white balance that makes the
+//    lines gray, so a tungsten or cold-LED cast neither colors the lines nor
+//    grays out the markers (and the lines' color is the cast the camera's
+//    white balance should remove: reported to the operator);
+//  - the saturation needed scales with the frame's own: a share of what its
+//    most colored peaks show (a desaturating camera or gamma lowers every
+//    saturation alike), never more than kMinBlobSaturation.
+// Both backends judge their peaks with it. No allocation after construction.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "core/units.h"
+#include "geometry/camera_model.h"
+#include "geometry/field_model.h"
+#include "pipeline/blob.h"
+#include "pipeline/pipeline_options.h"
+
+namespace dv {
+
+class BlobColorGate {
+ public:
+  // Sample points along the field lines (z = 0) that the camera sees.
+  BlobColorGate(const CameraModel& camera, const FieldModel& field);
+
+  // First, per frame: the lines' color from `raw` (Bayer or BGR).
+  void measureNeutral(const cv::Mat& raw, BayerPattern bayer);
+  // Or take another gate's measurement of the same frame (the coarse pass's).
+  void adoptNeutral(const BlobColorGate& other);
+  // Then the frame's saturation scale from its strong peaks' colors
+  // (addPeak for each, strongest first), before any peak is judged.
+  void beginPeaks() { peak_saturation_.clear(); }
+  void addPeak(const float rgb[3]);
+  void endPeaks();
+  // Whether a blob of mean color rgb is colored enough.
+  bool colored(const float rgb[3]) const { return saturation(rgb) >= threshold_; }
+  // (max - min) / max of rgb after the white balance the lines give.
+  float saturation(const float rgb[3]) const;
+
+  const NeutralColor& neutral() const { return neutral_; }
+  float threshold() const { return threshold_; }
+  int linePoints() const { return static_cast<int>(points_.size()); }
+
+ private:
+  std::vector<ImagePx> points_;  // image px of line samples
+  std::vector<float> bright_;    // per sample: r + g + b (reused)
+  std::vector<float> rgb_;       // per sample (reused)
+  std::vector<float> order_;     // brightness copy for the quantile (reused)
+  std::vector<float> peak_saturation_;
+  NeutralColor neutral_;
+  float gain_[3] = {1, 1, 1};
+  float threshold_ = 0;
+};
+
+}  // namespace dv
