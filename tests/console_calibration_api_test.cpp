@@ -11,9 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "console_serve.h"
-// Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
-#include <httplib.h>
+// Last: it brings httplib.
+#include "console_suite.h"
 
 namespace dv {
 namespace {
@@ -21,33 +20,9 @@ namespace {
 using nlohmann::json;
 const char* kToken = "calibration-operator-51e2";
 
-class ConsoleCalibration : public ::testing::Test {
+class ConsoleCalibration : public ConsoleSuite {
  protected:
-  static void SetUpTestSuite() {
-    serve_ = new ConsoleServe("dv_console_calib", "console: {token_file: TOKEN_FILE}\n");
-    const std::string token_file = serve_->dir().file("token");
-    std::ofstream(token_file) << kToken << "\n";
-    std::string text = serve_->configText();
-    text.replace(text.find("TOKEN_FILE"), 10, token_file);
-    std::ofstream(serve_->configPath()) << text;
-    started_ = serve_->start();
-  }
-  static void TearDownTestSuite() {
-    delete serve_;
-    serve_ = nullptr;
-  }
-  void SetUp() override { ASSERT_TRUE(started_) << serve_->log(); }
-
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", serve_->port());
-    c.set_read_timeout(30, 0);
-    return c;
-  }
-  static json getJson(const std::string& path) {
-    auto r = client().Get(path.c_str());
-    if (!r || r->status != 200) return json();
-    return json::parse(r->body);
-  }
+  static void SetUpTestSuite() { startServe("dv_console_calib", kToken); }
   static json camera0Calibration() {
     const json g = getJson("/api/geometry");  // kept: a range over a temporary's member dangles
     if (!g.is_object() || !g.contains("calib")) return json();
@@ -65,17 +40,7 @@ class ConsoleCalibration : public ::testing::Test {
       }
     return -1;
   }
-
-  static ConsoleServe* serve_;
-  static bool started_;
 };
-ConsoleServe* ConsoleCalibration::serve_ = nullptr;
-bool ConsoleCalibration::started_ = false;
-
-const httplib::Headers& auth() {
-  static const httplib::Headers h = {{"Authorization", std::string("Bearer ") + kToken}};
-  return h;
-}
 
 TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
   ASSERT_TRUE(ConsoleServe::waitFor([] { return camera0Robots() >= 6; }, 120)) << serve_->log();

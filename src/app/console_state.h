@@ -17,6 +17,7 @@
 
 #include "app/camera_feed.h"
 #include "app/console_calibration.h"
+#include "app/console_layers.h"
 #include "app/log_ring.h"
 #include "app/site_config.h"
 #include "geometry/geometry_io.h"
@@ -48,6 +49,7 @@ class ConsoleState {
   SiteConfig config() const;
   const std::string& configPath() const { return config_path_; }
   CalibrationRuns& calibrations() { return calibrations_; }
+  LayerPipelines& layers() { return layers_; }
   // serve's recent log lines (null: none kept).
   void setLogRing(std::shared_ptr<const LogRing> ring) { log_ring_ = std::move(ring); }
   const LogRing* logRing() const { return log_ring_.get(); }
@@ -81,6 +83,7 @@ class ConsoleState {
   std::string config_text_;
   std::deque<std::shared_ptr<Job>> jobs_;
   std::shared_ptr<const LogRing> log_ring_;
+  LayerPipelines layers_;
   CalibrationRuns calibrations_;  // last: its workers may still touch the members above
 };
 
