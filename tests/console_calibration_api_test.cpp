@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "geometry/camera_model.h"
+#include "geometry/geometry_io.h"
 // Last: it brings httplib.
 #include "console_suite.h"
 
@@ -161,6 +163,85 @@ TEST_F(ConsoleCalibration, ARejectedRunLeavesTheGeometry) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 409);
   EXPECT_EQ(getJson("/api/geometry"), geometry);
+}
+
+// Four or more known field points clicked where the true camera sees them
+// (with its height, as the Calibration page's picker sends them): once
+// accepted, every pixel's field point is within 1 mm of the truth's. Points
+// that cannot fix a pose are refused at once with the reason.
+TEST_F(ConsoleCalibration, PointsFromTheTrueCameraFixItsPose) {
+  auto r = client().Get("/api/geometry");
+  ASSERT_TRUE(r && r->status == 200);
+  const Geometry before = geometryFromJson(r->body, "/api/geometry");
+  ASSERT_NE(before.camera(1), nullptr);
+  const CameraModel truth(*before.camera(1));  // camera 1's own: no run was accepted for it
+  auto clicks = [&](const std::vector<std::pair<double, double>>& field) {
+    json points = json::array();
+    for (const auto& [x, y] : field) {
+      const auto px = truth.fieldToImage({x, y, 0});
+      EXPECT_TRUE(px.has_value()) << x << ", " << y;
+      if (px) points.push_back({x, y, px->u, px->v});
+    }
+    return json{{"points", points}, {"camera_height", 5000}}.dump();
+  };
+  auto c = client();
+  // Collinear on the field (the halfway line), and one point given twice: refused at once.
+  r = c.Post("/api/cameras/1/calibrate", auth(), clicks({{0, -3000}, {0, -500}, {0, 500}, {0, 3000}}),
+             "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("cannot fix a camera pose"), std::string::npos) << r->body;
+  r = c.Post("/api/cameras/1/calibrate", auth(), clicks({{0, 3000}, {4500, 3000}, {4500, -3000}, {0, 3000}}),
+             "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("cannot fix a camera pose"), std::string::npos) << r->body;
+  const std::string good = clicks({{0, 3000}, {0, -3000}, {4500, 3000}, {4500, -3000}, {3500, 1000}, {3500, -1000}});
+  r = c.Post("/api/cameras/1/calibrate", good, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 401);
+
+  r = c.Post("/api/cameras/1/calibrate", auth(), good, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 202) << r->body;
+  json run;
+  ASSERT_TRUE(ConsoleServe::waitFor([&] {
+    run = getJson("/api/cameras/1/calibration");
+    return run.is_object() && run["state"] != "running";
+  }, 300)) << run.dump();
+  ASSERT_EQ(run["state"], "done") << run.dump();
+  ASSERT_TRUE(run["passed"]) << run["report"].dump(1);
+  EXPECT_EQ(run["report"]["mode"], "points");
+  r = c.Post("/api/cameras/1/calibration/accept", auth(), "{}", "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  r = c.Get("/api/geometry");
+  ASSERT_TRUE(r && r->status == 200);
+  const Geometry after = geometryFromJson(r->body, "/api/geometry");
+  ASSERT_NE(after.camera(1), nullptr);
+  EXPECT_NE(*after.camera(1), *before.camera(1));  // a new calibration, published as floats
+  const CameraModel found(*after.camera(1));
+  double worst = 0, sum = 0, worst_points = 0;
+  int n = 0;
+  for (int v = 0; v < ConsoleServe::kHeight; v += 64)
+    for (int u = 0; u < ConsoleServe::kWidth; u += 64) {
+      const auto a = truth.imageToField({double(u), double(v)}, 0), b = found.imageToField({double(u), double(v)}, 0);
+      ASSERT_TRUE(a && b);
+      const double e = std::hypot(a->x - b->x, a->y - b->y);
+      worst = std::max(worst, e);
+      sum += e;
+      ++n;
+    }
+  for (const json& p : json::parse(good)["points"]) {
+    const auto b = found.imageToField({p[2].get<double>(), p[3].get<double>()}, 0);
+    ASSERT_TRUE(b);
+    worst_points = std::max(worst_points, std::hypot(b->x - p[0].get<double>(), b->y - p[1].get<double>()));
+  }
+  const json& pos = run["report"]["parameters"]["position_mm"];
+  std::printf("points: field error over camera 1's image mean %.3f mm, largest %.3f mm; at the points %.3f mm; "
+              "position %s\n", sum / n, worst, worst_points, pos.dump().c_str());
+  EXPECT_LT(sum / n, 1.0) << "mm, the mean field error over the image";
+  EXPECT_LT(worst_points, 1.0) << "mm, at the points given";
 }
 
 TEST_F(ConsoleCalibration, ColorsHoldTheLearnedClassesAndRecentBlobs) {

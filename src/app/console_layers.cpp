@@ -11,14 +11,6 @@ namespace dv::app {
 
 namespace {
 
-bool sameCalibration(const CameraCalibration& a, const CameraCalibration& b) {
-  return a.camera_id == b.camera_id && a.focal_length == b.focal_length &&
-         a.principal_point_x == b.principal_point_x && a.principal_point_y == b.principal_point_y &&
-         a.distortion == b.distortion && a.q0 == b.q0 && a.q1 == b.q1 && a.q2 == b.q2 && a.q3 == b.q3 &&
-         a.tx == b.tx && a.ty == b.ty && a.tz == b.tz && a.image_width == b.image_width &&
-         a.image_height == b.image_height;
-}
-
 bool sameOptions(const PipelineOptions& a, const PipelineOptions& b) {
   return a.color == b.color && a.score == b.score && a.bayer == b.bayer && a.bayer_sampling == b.bayer_sampling &&
          a.plane_height == b.plane_height && a.threshold == b.threshold && a.max_blobs == b.max_blobs &&
@@ -85,7 +77,7 @@ bool LayerPipelines::runIfDue(Slot& s, CameraFeed& feed, const FieldModel& field
   PipelineOptions options = setup.pipeline;
   options.threads = 1;  // the HTTP thread alone: the cameras keep their cores
   options.coarse_search = false;  // every picture at the grid's full resolution
-  if (!s.pipeline || !sameCalibration(setup.calibration, s.built_calibration) ||
+  if (!s.pipeline || setup.calibration != s.built_calibration ||
       !sameOptions(options, s.built_options)) {
     s.pipeline.reset();
     try {
