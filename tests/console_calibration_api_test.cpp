@@ -32,6 +32,25 @@ class ConsoleCalibration : public ConsoleSuite {
       if (c["cameraId"] == 0) return c;
     return json();
   }
+  // Starts a run on camera `id` with the token and waits for it to end;
+  // null (with a failure added) when it does not start or never ends.
+  static json finishedRun(int id, const std::string& body) {
+    auto r = client().Post(("/api/cameras/" + std::to_string(id) + "/calibrate").c_str(), auth(), body,
+                           "application/json");
+    if (!r || r->status != 202 || json::parse(r->body)["state"] != "running") {
+      ADD_FAILURE() << "not started: " << (r ? r->body : "no answer");
+      return json();
+    }
+    json run;
+    if (!ConsoleServe::waitFor([&] {
+          run = getJson("/api/cameras/" + std::to_string(id) + "/calibration");
+          return run.is_object() && run["state"] != "running";
+        }, 300)) {
+      ADD_FAILURE() << "still running: " << run.dump();
+      return json();
+    }
+    return run;
+  }
   static int camera0Robots() {
     const json d = getJson("/api/detections");
     if (!d.is_object()) return -1;
@@ -77,15 +96,8 @@ TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 409);
 
-  r = c.Post("/api/cameras/0/calibrate", auth(), hints, "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  EXPECT_EQ(json::parse(r->body)["state"], "running");
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/0/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(0, hints);
+  ASSERT_TRUE(run.is_object());
   ASSERT_EQ(run["state"], "done") << run.dump();
   EXPECT_TRUE(run["passed"]) << run["report"].dump(1);
   EXPECT_EQ(run["image_size"], json::array({ConsoleServe::kWidth, ConsoleServe::kHeight}));
@@ -142,17 +154,11 @@ TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
 TEST_F(ConsoleCalibration, ARejectedRunLeavesTheGeometry) {
   const json before = camera0Calibration();
   auto c = client();
-  auto r = c.Post("/api/cameras/1/calibrate", auth(), R"({"region": "x>0", "camera_height": 5000})", "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/1/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(1, R"({"region": "x>0", "camera_height": 5000})");
+  ASSERT_TRUE(run.is_object());
   ASSERT_EQ(run["state"], "done") << run.dump();
   const json geometry = getJson("/api/geometry");
-  r = c.Post("/api/cameras/1/calibration/reject", "{}", "application/json");
+  auto r = c.Post("/api/cameras/1/calibration/reject", "{}", "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 401);
   r = c.Post("/api/cameras/1/calibration/reject", auth(), "{}", "application/json");
@@ -201,14 +207,8 @@ TEST_F(ConsoleCalibration, PointsFromTheTrueCameraFixItsPose) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 401);
 
-  r = c.Post("/api/cameras/1/calibrate", auth(), good, "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/1/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(1, good);
+  ASSERT_TRUE(run.is_object());
   ASSERT_EQ(run["state"], "done") << run.dump();
   ASSERT_TRUE(run["passed"]) << run["report"].dump(1);
   EXPECT_EQ(run["report"]["mode"], "points");
