@@ -1,7 +1,8 @@
 #pragma once
 // A test suite over one `dotvision serve` with its console (console_serve.h)
 // for all its tests, the operator's token in a token file the config names:
-// derive, and start it from SetUpTestSuite with startServe(prefix, token).
+// derive, and start it from SetUpTestSuite with startServe(prefix, token)
+// (or startRun(prefix) for `dotvision run --http`).
 // Include this header last: it brings httplib.
 #include <gtest/gtest.h>
 
@@ -27,6 +28,12 @@ class ConsoleSuite : public ::testing::Test {
     text.replace(text.find("TOKEN_FILE"), 10, token_file);
     std::ofstream(serve_->configPath()) << text;
     started_ = serve_->start();
+  }
+  // `dotvision run --http` on camera 0 instead; the token is the printed one.
+  static void startRun(const std::string& prefix) {
+    serve_ = new ConsoleServe(prefix);
+    started_ = serve_->startRun();
+    token_ = serve_->printedToken();
   }
   static void TearDownTestSuite() {
     delete serve_;

@@ -58,6 +58,14 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   if (ec) throw InputError(path, "cannot replace the config: " + ec.message());
 }
 
+// dotvision run has no config file: its settings are its command line.
+bool refusedWithoutConfig(const ConsoleState& state, httplib::Response& res) {
+  if (!state.configPath().empty()) return false;
+  sendError(res, 409, "this process has no config file to change (dotvision run takes its settings from the "
+                      "command line; dotvision serve SITE.yaml has one)");
+  return true;
+}
+
 // The new config text goes the SIGHUP way: validated as a whole (a bad one
 // is refused with its errors and the running config stays), then applied
 // by the main loop; saved to the file only when asked.
@@ -209,12 +217,14 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
   static std::mutex edit_mutex;
   server.Put("/api/config", [&state](const httplib::Request& req, httplib::Response& res) {
     std::lock_guard<std::mutex> lock(edit_mutex);
+    if (refusedWithoutConfig(state, res)) return;
     applyConfigText(state, req, res, req.body, true);
   });
   // {"robot_heights.default": 130, "detector.tracking": false}: the keys
   // changed in the running config's text (config_edit.h), then as PUT.
   server.Patch("/api/config", [&state](const httplib::Request& req, httplib::Response& res) {
     std::lock_guard<std::mutex> lock(edit_mutex);
+    if (refusedWithoutConfig(state, res)) return;
     json edits;
     try {
       edits = json::parse(req.body);

@@ -14,7 +14,7 @@
 
 #include "app/console_http.h"
 #include "app/console_state.h"
-#include "app/site_runtime.h"
+#include "app/console_host.h"
 #include "core/error.h"
 // Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
 #include <httplib.h>
@@ -149,7 +149,7 @@ void addCalibrationApi(httplib::Server& server, ConsoleState& state) {
     if (!cal) return sendError(res, 409, why);
     const CameraCalibration c = *cal;
     const ConsoleState::TaskResult r = state.onMainLoop(
-        [c, publisher](SiteRuntime& runtime) { return runtime.setCalibration(c, publisher); }, 15);
+        [c, publisher](ConsoleHost& runtime) { return runtime.setCalibration(c, publisher); }, 15);
     if (!r.applied) return sendError(res, 503, "serve's main loop did not take the calibration within 15 s");
     if (!r.error.empty()) return sendError(res, 400, r.error);
     state.setCameraCalibration(c);
