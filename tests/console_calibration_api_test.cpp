@@ -32,25 +32,6 @@ class ConsoleCalibration : public ConsoleSuite {
       if (c["cameraId"] == 0) return c;
     return json();
   }
-  // Starts a run on camera `id` with the token and waits for it to end;
-  // null (with a failure added) when it does not start or never ends.
-  static json finishedRun(int id, const std::string& body) {
-    auto r = client().Post(("/api/cameras/" + std::to_string(id) + "/calibrate").c_str(), auth(), body,
-                           "application/json");
-    if (!r || r->status != 202 || json::parse(r->body)["state"] != "running") {
-      ADD_FAILURE() << "not started: " << (r ? r->body : "no answer");
-      return json();
-    }
-    json run;
-    if (!ConsoleServe::waitFor([&] {
-          run = getJson("/api/cameras/" + std::to_string(id) + "/calibration");
-          return run.is_object() && run["state"] != "running";
-        }, 300)) {
-      ADD_FAILURE() << "still running: " << run.dump();
-      return json();
-    }
-    return run;
-  }
   static int camera0Robots() {
     const json d = getJson("/api/detections");
     if (!d.is_object()) return -1;

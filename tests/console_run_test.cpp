@@ -58,15 +58,8 @@ TEST_F(ConsoleRun, HostsTheConsoleOverItsCamera) {
     ASSERT_TRUE(px.has_value()) << x << ", " << y;
     points.push_back({x, y, px->u, px->v});
   }
-  r = client().Post("/api/cameras/0/calibrate", auth(), json{{"points", points}, {"camera_height", 5000}}.dump(),
-                    "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/0/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(0, json{{"points", points}, {"camera_height", 5000}}.dump());
+  ASSERT_TRUE(run.is_object());
   ASSERT_TRUE(run["passed"]) << run.dump();
   r = client().Post("/api/cameras/0/calibration/accept", auth(), "{}", "application/json");
   ASSERT_TRUE(r);

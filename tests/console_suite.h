@@ -18,6 +18,8 @@ namespace dv {
 
 class ConsoleSuite : public ::testing::Test {
  protected:
+  using json = nlohmann::json;
+
   static void startServe(const std::string& prefix, const std::string& token) {
     token_ = token;
     serve_ = new ConsoleServe(prefix, "console: {token_file: TOKEN_FILE}\n");
@@ -48,23 +50,43 @@ class ConsoleSuite : public ::testing::Test {
     return c;
   }
   // Null unless answered 200 (a request timing out on a loaded machine).
-  static nlohmann::json getJson(const std::string& path) {
+  static json getJson(const std::string& path) {
     auto r = client().Get(path.c_str());
-    if (!r || r->status != 200) return nlohmann::json();
-    return nlohmann::json::parse(r->body);
+    if (!r || r->status != 200) return json();
+    return json::parse(r->body);
   }
   static httplib::Headers auth() { return {{"Authorization", "Bearer " + token_}}; }
   // The status records once every camera has processed frames.
-  static nlohmann::json liveStatus() {
-    nlohmann::json s;
+  static json liveStatus() {
+    json s;
     ConsoleServe::waitFor([&] {
       s = getJson("/api/status");
       if (!s.is_object() || s["cameras"].size() != 2) return false;
-      for (const nlohmann::json& c : s["cameras"])
+      for (const json& c : s["cameras"])
         if (c["fps_out"].get<double>() <= 0) return false;
       return true;
     });
     return s;
+  }
+
+  // Starts a run on camera `id` with the token and waits for it to end;
+  // null (with a failure added) when it does not start or never ends.
+  static json finishedRun(int id, const std::string& body) {
+    auto r = client().Post(("/api/cameras/" + std::to_string(id) + "/calibrate").c_str(), auth(), body,
+                           "application/json");
+    if (!r || r->status != 202 || json::parse(r->body)["state"] != "running") {
+      ADD_FAILURE() << "not started: " << (r ? r->body : "no answer");
+      return json();
+    }
+    json run;
+    if (!ConsoleServe::waitFor([&] {
+          run = getJson("/api/cameras/" + std::to_string(id) + "/calibration");
+          return run.is_object() && run["state"] != "running";
+        }, 300)) {
+      ADD_FAILURE() << "still running: " << run.dump();
+      return json();
+    }
+    return run;
   }
 
   // One suite runs at a time; each starts its own serve.

@@ -469,6 +469,7 @@ CommandFn addRunCommand(CLI::App& root) {
       "Without --source it runs on the built-in synthetic scene and compares with its truth.");
   cmd->add_option("--source", a->source,
                   "genicam://ID (Aravis id or serial; genicam:// for the only camera), v4l2:///dev/videoN, "
+                  "synthetic://SCENE/ID (a camera of a synthetic scene, live; its geometry unless --geometry), "
                   "rtsp://..., http://... (MJPEG), image file, directory of images (sorted by name; in a `dotvision synth` directory only "
                   "the chosen camera's frames), quoted glob ('dir/*.png') or video file. Color images are "
                   "RGB; 8-bit single-channel images are Bayer mosaics");
