@@ -8,13 +8,15 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <map>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
-#include "console_serve.h"
 #include "dotvision/ssl_geometry.pb.h"
 #include "geometry/proto_json.h"
-// Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
-#include <httplib.h>
+// Last: it brings httplib.
+#include "console_suite.h"
 
 namespace dv {
 namespace {
@@ -22,46 +24,9 @@ namespace {
 using nlohmann::json;
 const char* kToken = "field-a-operator-7f3c";
 
-class ConsoleApi : public ::testing::Test {
+class ConsoleApi : public ConsoleSuite {
  protected:
-  static void SetUpTestSuite() {
-    serve_ = new ConsoleServe("dv_console_api", "console: {token_file: " + std::string("TOKEN_FILE") + "}\n");
-    // The token file lives in the serve's temp dir; rewrite the placeholder.
-    const std::string token_file = serve_->dir().file("token");
-    std::ofstream(token_file) << kToken << "\n";
-    std::string text = serve_->configText();
-    text.replace(text.find("TOKEN_FILE"), 10, token_file);
-    std::ofstream(serve_->configPath()) << text;
-    started_ = serve_->start();
-  }
-  static void TearDownTestSuite() {
-    delete serve_;
-    serve_ = nullptr;
-  }
-  void SetUp() override { ASSERT_TRUE(started_) << serve_->log(); }
-
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", serve_->port());
-    c.set_read_timeout(30, 0);
-    return c;
-  }
-  static json getJson(const std::string& path) {
-    auto r = client().Get(path.c_str());
-    if (!r || r->status != 200) return json();
-    return json::parse(r->body);
-  }
-  // The status records once every camera has processed frames.
-  static json liveStatus() {
-    json s;
-    ConsoleServe::waitFor([&] {
-      s = getJson("/api/status");
-      if (!s.is_object() || s["cameras"].size() != 2) return false;
-      for (const json& c : s["cameras"])
-        if (c["fps_out"].get<double>() <= 0) return false;
-      return true;
-    });
-    return s;
-  }
+  static void SetUpTestSuite() { startServe("dv_console_api", kToken); }
   // -1 while the status cannot be had (a request timing out on a loaded machine).
   static double heightInUse() {
     const json s = getJson("/api/status");
@@ -69,12 +34,7 @@ class ConsoleApi : public ::testing::Test {
     const json& h = s["cameras"][0]["robot_height_mm"]["yellow"];
     return h.is_number() ? h.get<double>() : -1;
   }
-
-  static ConsoleServe* serve_;
-  static bool started_;
 };
-ConsoleServe* ConsoleApi::serve_ = nullptr;
-bool ConsoleApi::started_ = false;
 
 TEST_F(ConsoleApi, StatusCamerasDetectionsAndGeometry) {
   const json status = liveStatus();
@@ -181,6 +141,98 @@ TEST_F(ConsoleApi, SnapshotsHaveTheSizeAskedForAndTheirLayers) {
   EXPECT_NE(none->body.find("no camera 7"), std::string::npos) << none->body;
 }
 
+// The pixel-stage layers come from the console's own pipeline run: each is
+// a picture of the rectified grid at the width asked for, and each shows what
+// its stage makes of the frame; the grid maps cells to field mm (the robots
+// the camera reports lie on peaks of the score picture there).
+TEST_F(ConsoleApi, PixelStageLayersAreTheConsolesOwnPipelineRun) {
+  liveStatus();
+  const json grid = getJson("/api/cameras/0/grid");
+  ASSERT_TRUE(grid.is_object() && grid["width"].get<int>() > 400) << grid.dump() << serve_->log();
+  const int gw = grid["width"], gh = grid["height"];
+  const double x0 = grid["x0_mm"], y0 = grid["y0_mm"], mm = grid["mm_per_cell"];
+  // Camera 0 looks down at (-2250, 0): the grid's middle.
+  EXPECT_NEAR(x0 + mm * (gw - 1) / 2, -2250, 300) << grid.dump();
+  EXPECT_NEAR(y0 - mm * (gh - 1) / 2, 0, 300) << grid.dump();
+  EXPECT_EQ(grid["plane_height_mm"], 150) << grid.dump();
+
+  auto picture = [](const std::string& layers, int width) {
+    auto r = client().Get(("/api/cameras/0/snapshot.png?width=" + std::to_string(width) + "&layer=" + layers).c_str());
+    if (!r || r->status != 200) {
+      ADD_FAILURE() << layers << ": " << (r ? r->body : "no answer");
+      return cv::Mat();
+    }
+    return cv::imdecode(std::vector<uchar>(r->body.begin(), r->body.end()), cv::IMREAD_COLOR);
+  };
+  std::map<std::string, cv::Mat> seen;
+  for (const char* name : {"rectified", "chroma", "gradient", "score"}) {
+    const cv::Mat m = picture(name, 400);
+    ASSERT_FALSE(m.empty()) << name;
+    EXPECT_EQ(m.cols, 400) << name;
+    EXPECT_NEAR(m.rows, double(gh) * 400 / gw, 1) << name;
+    seen[name] = m;
+  }
+  const cv::Scalar carpet = cv::mean(seen["rectified"]);
+  EXPECT_GT(carpet[1], carpet[2] + 10) << "a green carpet: " << carpet;  // BGR
+  // Chroma: the colors divided by their brightness, a gray at 128 each.
+  const cv::Scalar chroma = cv::mean(seen["chroma"]);
+  EXPECT_GT(chroma[0] + chroma[1] + chroma[2], 300) << chroma;
+  EXPECT_GT(cv::norm(seen["rectified"], seen["chroma"], cv::NORM_L1) / seen["chroma"].total(), 30);
+  // Gradient and score are gray about 128 (zero) with bright peaks at the blobs.
+  for (const char* name : {"gradient", "score"}) {
+    std::vector<cv::Mat> ch;
+    cv::split(seen[name], ch);
+    EXPECT_EQ(cv::norm(ch[0], ch[2], cv::NORM_INF), 0) << name << " is gray";
+    cv::Mat mid;
+    cv::inRange(ch[0], 118, 138, mid);
+    EXPECT_GT(cv::countNonZero(mid), 0.5 * mid.total()) << name;
+    double top = 0;
+    cv::minMaxLoc(ch[0], nullptr, &top);
+    EXPECT_GT(top, 200) << name;
+  }
+  EXPECT_GT(cv::norm(seen["gradient"], seen["score"], cv::NORM_L1) / seen["score"].total(), 3);
+  // Blobs: white rings where the pixel stage found them.
+  auto white = [](const cv::Mat& m) {
+    cv::Mat w;
+    cv::inRange(m, cv::Scalar(230, 230, 230), cv::Scalar(255, 255, 255), w);
+    return cv::countNonZero(w);
+  };
+  const cv::Mat score_blobs = picture("score,blobs", 400);
+  ASSERT_EQ(score_blobs.size(), seen["score"].size());
+  EXPECT_GT(white(score_blobs), white(seen["score"]) + 200);
+  EXPECT_GT(white(picture("raw,blobs", 400)), white(picture("raw", 400)) + 200);
+
+  // Each robot camera 0 reports stands on a peak of the full-size score picture.
+  const cv::Mat score = picture("score", gw);
+  ASSERT_EQ(score.cols, gw);
+  json det;
+  ASSERT_TRUE(ConsoleServe::waitFor([&] {
+    const json d = getJson("/api/detections");
+    if (d.is_object() && d["cameras"][0]["detection"].is_object()) det = d["cameras"][0]["detection"];
+    return det.is_object();
+  }));
+  int robots = 0;
+  for (const char* team : {"robotsYellow", "robotsBlue"})
+    for (const json& r : det.value(team, json::array())) {
+      const int gx = int(std::lround((r["x"].get<double>() - x0) / mm));
+      const int gy = int(std::lround((y0 - r["y"].get<double>()) / mm));
+      ASSERT_TRUE(gx >= 3 && gy >= 3 && gx < gw - 3 && gy < gh - 3) << r.dump();
+      double peak = 0;
+      cv::minMaxLoc(score(cv::Rect(gx - 3, gy - 3, 7, 7)), nullptr, &peak);
+      EXPECT_GT(peak, 128 + 127 * 0.24 / (4 * 0.24)) << "no blob at grid (" << gx << ", " << gy << ") for " << r.dump();
+      ++robots;
+    }
+  EXPECT_GE(robots, ConsoleServe::kCamera0Robots - 1);
+
+  auto r = client().Get("/api/cameras/0/snapshot.png?layer=score,rectified");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("both pictures"), std::string::npos) << r->body;
+  r = client().Get("/api/cameras/7/grid");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+}
+
 TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
   liveStatus();
   const std::string original = serve_->configText();
@@ -208,8 +260,7 @@ TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
   EXPECT_EQ(client().Get("/api/config")->body, original);
 
   // With the token: applied to the processors, the file untouched.
-  const httplib::Headers auth = {{"Authorization", std::string("Bearer ") + kToken}};
-  r = c.Patch("/api/config", auth, patch, "application/json");
+  r = c.Patch("/api/config", auth(), patch, "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
   json answer = json::parse(r->body);
@@ -222,25 +273,25 @@ TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
   EXPECT_NE(client().Get("/api/config")->body.find("default: 130   # the league's usual"), std::string::npos);
 
   // A broken config is refused with the error naming the file and line; the running one stays.
-  r = c.Put("/api/config", auth, "cameras:\n  - id: 0\n    sorce: x\n", "application/yaml");
+  r = c.Put("/api/config", auth(), "cameras:\n  - id: 0\n    sorce: x\n", "application/yaml");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   answer = json::parse(r->body);
   EXPECT_FALSE(answer["applied"]);
   EXPECT_NE(answer["error"].get<std::string>().find(serve_->configPath() + ":3"), std::string::npos) << r->body;
   EXPECT_NE(answer["error"].get<std::string>().find("did you mean 'source'?"), std::string::npos) << r->body;
-  r = c.Patch("/api/config", auth, R"({"robot_heights.default": 500})", "application/json");
+  r = c.Patch("/api/config", auth(), R"({"robot_heights.default": 500})", "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(r->body.find("robot_heights.default"), std::string::npos) << r->body;
-  r = c.Patch("/api/config", auth, "[1, 2]", "application/json");
+  r = c.Patch("/api/config", auth(), "[1, 2]", "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   std::this_thread::sleep_for(std::chrono::seconds(1));
   EXPECT_EQ(heightInUse(), 130);
 
   // Saved when asked: the file gets the edit and keeps its comments.
-  r = c.Patch("/api/config?save=1", auth, R"({"robot_heights.default": 135})",
+  r = c.Patch("/api/config?save=1", auth(), R"({"robot_heights.default": 135})",
               "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;

@@ -1,10 +1,12 @@
 // The console in a real browser (Debian's chromium, headless, driven by
 // chromedriver) against a live `dotvision serve`: the field page draws the
 // robots the cameras report, the camera page loads frames of the size it
-// asked for, and a robot height changed on the settings page is refused
+// asked for and switches to a grid layer whose hover shows a robot's field
+// point, and a robot height changed on the settings page is refused
 // with a wrong token and, with the printed one, reaches the processors and
 // the config file; the calibration page runs a calibration and shows its
-// verdict, figures and overlay, and accepting it changes the geometry; the
+// verdict, figures and overlay, and accepting it changes the geometry, and
+// known field points picked on its image calibrate in the points mode; the
 // colors page draws the learned classes and recent blobs; the status page
 // shows serve's log, never the token. Screenshots go to
 // <build>/test_artifacts/console/.
@@ -17,6 +19,8 @@
 #include <nlohmann/json.hpp>
 
 #include "console_serve.h"
+#include "geometry/camera_model.h"
+#include "geometry/geometry_io.h"
 #include "webdriver.h"
 
 namespace dv {
@@ -56,6 +60,14 @@ class ConsoleBrowser : public ::testing::Test {
   static double heightInUse() {
     const json s = apiJson("/api/status");
     return s.is_object() && !s["cameras"].empty() ? s["cameras"][0]["robot_height_mm"]["yellow"].get<double>() : -1;
+  }
+
+  // Clicks Run on the Calibration page and waits for the run to end: its
+  // figures' text ("" when it did not end).
+  static std::string runOnCalibrationPage(WebDriver& d) {
+    d.click(d.find("#run"));
+    if (!d.waitUntil("return document.getElementById('state').dataset.state == 'done'", 300)) return "";
+    return d.execute("return document.getElementById('figures').innerText");
   }
 
   static ConsoleServe* serve_;
@@ -117,6 +129,57 @@ TEST_F(ConsoleBrowser, CameraPageLoadsFramesOfTheSizeItAsked) {
   EXPECT_TRUE(d.screenshot(kArtifacts + "status.png"));
 }
 
+// The camera page switches to a picture of the pixel stage (the blob score
+// with the blobs): it has the rectified grid's aspect, and hovering over a
+// robot there shows the field point the camera reports for it.
+TEST_F(ConsoleBrowser, CameraPageSwitchesToAGridLayerAndHoversOnTheField) {
+  WebDriver& d = *driver_;
+  const json grid = apiJson("/api/cameras/0/grid");
+  ASSERT_TRUE(grid.is_object()) << serve_->log();
+  const int gw = grid["width"], gh = grid["height"];
+  d.navigate(serve_->url("/camera.html?camera=0"));
+  ASSERT_TRUE(d.waitUntil("return Number(document.getElementById('snapshot').dataset.loaded) >= 1"));
+  d.click(d.find("input[name=base][value=score]"));
+  d.click(d.find("#layer-blobs"));
+  // The page keeps replacing the image: note one that loaded with these layers.
+  ASSERT_TRUE(d.waitUntil(
+      "const i = document.getElementById('snapshot'); const q = new URL(i.src).searchParams; "
+      "if (!(i.complete && i.naturalWidth > 0 && q.get('layer') == 'score,blobs,lines,detections')) return false; "
+      "window.seen = [i.naturalWidth, i.naturalHeight, Number(q.get('width'))]; return true"))
+      << d.execute("return document.getElementById('snapshot').src");
+  const json seen = d.execute("return window.seen");
+  const int width = std::min(gw, seen[2].get<int>());
+  EXPECT_EQ(seen[0], width) << seen.dump() << grid.dump();
+  EXPECT_NEAR(seen[1].get<double>(), double(gh) * width / gw, 1) << seen.dump() << grid.dump();
+  EXPECT_TRUE(d.screenshot(kArtifacts + "camera_score_blobs.png"));
+
+  // Hover over a robot camera 0 reports: the page shows its field point.
+  json robot;
+  ASSERT_TRUE(ConsoleServe::waitFor([&] {
+    const json det = apiJson("/api/detections");
+    if (det.is_object() && det["cameras"][0]["detection"].is_object())
+      robot = det["cameras"][0]["detection"].value("robotsYellow", json::array())[0];
+    return robot.is_object();
+  }));
+  const double gx = (robot["x"].get<double>() - grid["x0_mm"].get<double>()) / grid["mm_per_cell"].get<double>();
+  const double gy = (grid["y0_mm"].get<double>() - robot["y"].get<double>()) / grid["mm_per_cell"].get<double>();
+  const json field = d.execute(
+      "const i = document.getElementById('snapshot'), r = i.getBoundingClientRect(); "
+      "i.dispatchEvent(new MouseEvent('mousemove', {bubbles: true, clientX: r.left + (arguments[0] + 0.5) / "
+      "arguments[2] * r.width, clientY: r.top + (arguments[1] + 0.5) / arguments[3] * r.height})); "
+      "return document.getElementById('hover').dataset.field",
+      {gx, gy, gw, gh});
+  ASSERT_TRUE(field.is_string()) << field.dump();
+  const std::string xy = field.get<std::string>();
+  const size_t comma = xy.find(',');
+  ASSERT_NE(comma, std::string::npos) << xy;
+  // A pixel of the page's picture is about 1.1 grid cells (6 mm) wide.
+  EXPECT_NEAR(std::stod(xy.substr(0, comma)), robot["x"].get<double>(), 15) << xy << " " << robot.dump();
+  EXPECT_NEAR(std::stod(xy.substr(comma + 1)), robot["y"].get<double>(), 15) << xy << " " << robot.dump();
+  EXPECT_NE(d.execute("return document.getElementById('hover').textContent").get<std::string>().find("grid cell"),
+            std::string::npos);
+}
+
 TEST_F(ConsoleBrowser, HeightSetOnTheSettingsPageReachesTheProcessorAndTheFile) {
   WebDriver& d = *driver_;
   ASSERT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 140; }));
@@ -160,10 +223,8 @@ TEST_F(ConsoleBrowser, CalibrationPageRunsAndShowsAResult) {
   ASSERT_TRUE(d.waitUntil("return document.getElementById('state').dataset.state == 'none'"))
       << d.execute("return document.body.innerText");
   d.execute("document.getElementById('region').value = 'x<0'; document.getElementById('height').value = '5000'");
-  d.click(d.find("#run"));
-  ASSERT_TRUE(d.waitUntil("return document.getElementById('state').dataset.state == 'done'", 300))
-      << d.execute("return document.body.innerText");
-  const std::string figures = d.execute("return document.getElementById('figures').innerText");
+  const std::string figures = runOnCalibrationPage(d);
+  ASSERT_FALSE(figures.empty()) << d.execute("return document.body.innerText");
   EXPECT_NE(figures.find("passed"), std::string::npos) << figures;
   EXPECT_NE(figures.find("overlap ratio"), std::string::npos) << figures;
   // The overlay of the frame calibrated, 960 px wide at most.
@@ -177,6 +238,50 @@ TEST_F(ConsoleBrowser, CalibrationPageRunsAndShowsAResult) {
       << d.execute("return document.getElementById('notes').textContent");
   EXPECT_NE(apiJson("/api/geometry"), before);
   EXPECT_TRUE(d.screenshot(kArtifacts + "calibration_accepted.png"));
+}
+
+// The four-point fallback: known field points chosen from the list and
+// clicked where camera 1's true calibration sees them; the run on them
+// passes in the points mode.
+TEST_F(ConsoleBrowser, CalibrationPagePicksKnownFieldPointsOnTheImage) {
+  WebDriver& d = *driver_;
+  httplib::Client c("127.0.0.1", serve_->port());
+  c.set_read_timeout(30, 0);
+  auto g = c.Get("/api/geometry");
+  ASSERT_TRUE(g && g->status == 200);
+  const Geometry geometry = geometryFromJson(g->body, "/api/geometry");
+  ASSERT_NE(geometry.camera(1), nullptr);
+  const CameraModel truth(*geometry.camera(1));
+  d.navigate(serve_->url("/calibration.html?camera=1#token=" + serve_->printedToken()));
+  ASSERT_TRUE(d.waitUntil("const i = document.getElementById('image'); "
+                          "return document.getElementById('state').dataset.state == 'none' && "
+                          "document.getElementById('known').options.length > 10 && i.complete && i.naturalWidth > 0"))
+      << d.execute("return document.body.innerText");
+  d.execute("document.getElementById('picker').open = true");
+  const std::pair<int, int> points[] = {{0, 3000}, {0, -3000}, {4500, 3000}, {4500, -3000}, {3500, 1000}, {3500, -1000}};
+  for (const auto& [x, y] : points) {
+    const auto px = truth.fieldToImage({double(x), double(y), 0});
+    ASSERT_TRUE(px.has_value()) << x << ", " << y;
+    const json chosen = d.execute(
+        "const s = document.getElementById('known'); "
+        "const o = [...s.options].find((o) => o.text.endsWith(`(${arguments[0]}, ${arguments[1]})`)); "
+        "if (!o) return false; s.value = o.value; "
+        "const i = document.getElementById('image'), r = i.getBoundingClientRect(); "
+        "i.dispatchEvent(new MouseEvent('click', {bubbles: true, clientX: r.left + (arguments[2] + 0.5) / "
+        "arguments[4] * r.width, clientY: r.top + (arguments[3] + 0.5) / arguments[5] * r.height})); "
+        "return true",
+        {x, y, px->u, px->v, ConsoleServe::kWidth, ConsoleServe::kHeight});
+    ASSERT_EQ(chosen, true) << "no known point (" << x << ", " << y << ") in the list";
+  }
+  EXPECT_EQ(d.execute("return document.getElementById('picked').dataset.count"), "6");
+  EXPECT_EQ(d.execute("return document.querySelectorAll('#view .pick-mark').length"), 6);
+  EXPECT_TRUE(d.screenshot(kArtifacts + "calibration_points_picked.png"));
+  d.execute("document.getElementById('height').value = '5000'");
+  const std::string figures = runOnCalibrationPage(d);
+  ASSERT_FALSE(figures.empty()) << d.execute("return document.body.innerText");
+  EXPECT_NE(figures.find("passed"), std::string::npos) << figures;
+  EXPECT_NE(figures.find("points"), std::string::npos) << figures;
+  EXPECT_TRUE(d.screenshot(kArtifacts + "calibration_points.png"));
 }
 
 TEST_F(ConsoleBrowser, ColorsPageDrawsTheClassesAndRecentBlobs) {

@@ -11,9 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "console_serve.h"
-// Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
-#include <httplib.h>
+#include "geometry/camera_model.h"
+#include "geometry/geometry_io.h"
+// Last: it brings httplib.
+#include "console_suite.h"
 
 namespace dv {
 namespace {
@@ -21,33 +22,9 @@ namespace {
 using nlohmann::json;
 const char* kToken = "calibration-operator-51e2";
 
-class ConsoleCalibration : public ::testing::Test {
+class ConsoleCalibration : public ConsoleSuite {
  protected:
-  static void SetUpTestSuite() {
-    serve_ = new ConsoleServe("dv_console_calib", "console: {token_file: TOKEN_FILE}\n");
-    const std::string token_file = serve_->dir().file("token");
-    std::ofstream(token_file) << kToken << "\n";
-    std::string text = serve_->configText();
-    text.replace(text.find("TOKEN_FILE"), 10, token_file);
-    std::ofstream(serve_->configPath()) << text;
-    started_ = serve_->start();
-  }
-  static void TearDownTestSuite() {
-    delete serve_;
-    serve_ = nullptr;
-  }
-  void SetUp() override { ASSERT_TRUE(started_) << serve_->log(); }
-
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", serve_->port());
-    c.set_read_timeout(30, 0);
-    return c;
-  }
-  static json getJson(const std::string& path) {
-    auto r = client().Get(path.c_str());
-    if (!r || r->status != 200) return json();
-    return json::parse(r->body);
-  }
+  static void SetUpTestSuite() { startServe("dv_console_calib", kToken); }
   static json camera0Calibration() {
     const json g = getJson("/api/geometry");  // kept: a range over a temporary's member dangles
     if (!g.is_object() || !g.contains("calib")) return json();
@@ -65,17 +42,7 @@ class ConsoleCalibration : public ::testing::Test {
       }
     return -1;
   }
-
-  static ConsoleServe* serve_;
-  static bool started_;
 };
-ConsoleServe* ConsoleCalibration::serve_ = nullptr;
-bool ConsoleCalibration::started_ = false;
-
-const httplib::Headers& auth() {
-  static const httplib::Headers h = {{"Authorization", std::string("Bearer ") + kToken}};
-  return h;
-}
 
 TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
   ASSERT_TRUE(ConsoleServe::waitFor([] { return camera0Robots() >= 6; }, 120)) << serve_->log();
@@ -110,15 +77,8 @@ TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 409);
 
-  r = c.Post("/api/cameras/0/calibrate", auth(), hints, "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  EXPECT_EQ(json::parse(r->body)["state"], "running");
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/0/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(0, hints);
+  ASSERT_TRUE(run.is_object());
   ASSERT_EQ(run["state"], "done") << run.dump();
   EXPECT_TRUE(run["passed"]) << run["report"].dump(1);
   EXPECT_EQ(run["image_size"], json::array({ConsoleServe::kWidth, ConsoleServe::kHeight}));
@@ -175,17 +135,11 @@ TEST_F(ConsoleCalibration, RunsReportsAndAcceptChangesTheGeometry) {
 TEST_F(ConsoleCalibration, ARejectedRunLeavesTheGeometry) {
   const json before = camera0Calibration();
   auto c = client();
-  auto r = c.Post("/api/cameras/1/calibrate", auth(), R"({"region": "x>0", "camera_height": 5000})", "application/json");
-  ASSERT_TRUE(r);
-  ASSERT_EQ(r->status, 202) << r->body;
-  json run;
-  ASSERT_TRUE(ConsoleServe::waitFor([&] {
-    run = getJson("/api/cameras/1/calibration");
-    return run.is_object() && run["state"] != "running";
-  }, 300)) << run.dump();
+  const json run = finishedRun(1, R"({"region": "x>0", "camera_height": 5000})");
+  ASSERT_TRUE(run.is_object());
   ASSERT_EQ(run["state"], "done") << run.dump();
   const json geometry = getJson("/api/geometry");
-  r = c.Post("/api/cameras/1/calibration/reject", "{}", "application/json");
+  auto r = c.Post("/api/cameras/1/calibration/reject", "{}", "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 401);
   r = c.Post("/api/cameras/1/calibration/reject", auth(), "{}", "application/json");
@@ -196,6 +150,79 @@ TEST_F(ConsoleCalibration, ARejectedRunLeavesTheGeometry) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 409);
   EXPECT_EQ(getJson("/api/geometry"), geometry);
+}
+
+// Four or more known field points clicked where the true camera sees them
+// (with its height, as the Calibration page's picker sends them): once
+// accepted, every pixel's field point is within 1 mm of the truth's. Points
+// that cannot fix a pose are refused at once with the reason.
+TEST_F(ConsoleCalibration, PointsFromTheTrueCameraFixItsPose) {
+  auto r = client().Get("/api/geometry");
+  ASSERT_TRUE(r && r->status == 200);
+  const Geometry before = geometryFromJson(r->body, "/api/geometry");
+  ASSERT_NE(before.camera(1), nullptr);
+  const CameraModel truth(*before.camera(1));  // camera 1's own: no run was accepted for it
+  auto clicks = [&](const std::vector<std::pair<double, double>>& field) {
+    json points = json::array();
+    for (const auto& [x, y] : field) {
+      const auto px = truth.fieldToImage({x, y, 0});
+      EXPECT_TRUE(px.has_value()) << x << ", " << y;
+      if (px) points.push_back({x, y, px->u, px->v});
+    }
+    return json{{"points", points}, {"camera_height", 5000}}.dump();
+  };
+  auto c = client();
+  // Collinear on the field (the halfway line), and one point given twice: refused at once.
+  r = c.Post("/api/cameras/1/calibrate", auth(), clicks({{0, -3000}, {0, -500}, {0, 500}, {0, 3000}}),
+             "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("cannot fix a camera pose"), std::string::npos) << r->body;
+  r = c.Post("/api/cameras/1/calibrate", auth(), clicks({{0, 3000}, {4500, 3000}, {4500, -3000}, {0, 3000}}),
+             "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("cannot fix a camera pose"), std::string::npos) << r->body;
+  const std::string good = clicks({{0, 3000}, {0, -3000}, {4500, 3000}, {4500, -3000}, {3500, 1000}, {3500, -1000}});
+  r = c.Post("/api/cameras/1/calibrate", good, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 401);
+
+  const json run = finishedRun(1, good);
+  ASSERT_TRUE(run.is_object());
+  ASSERT_EQ(run["state"], "done") << run.dump();
+  ASSERT_TRUE(run["passed"]) << run["report"].dump(1);
+  EXPECT_EQ(run["report"]["mode"], "points");
+  r = c.Post("/api/cameras/1/calibration/accept", auth(), "{}", "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  r = c.Get("/api/geometry");
+  ASSERT_TRUE(r && r->status == 200);
+  const Geometry after = geometryFromJson(r->body, "/api/geometry");
+  ASSERT_NE(after.camera(1), nullptr);
+  EXPECT_NE(*after.camera(1), *before.camera(1));  // a new calibration, published as floats
+  const CameraModel found(*after.camera(1));
+  double worst = 0, sum = 0, worst_points = 0;
+  int n = 0;
+  for (int v = 0; v < ConsoleServe::kHeight; v += 64)
+    for (int u = 0; u < ConsoleServe::kWidth; u += 64) {
+      const auto a = truth.imageToField({double(u), double(v)}, 0), b = found.imageToField({double(u), double(v)}, 0);
+      ASSERT_TRUE(a && b);
+      const double e = std::hypot(a->x - b->x, a->y - b->y);
+      worst = std::max(worst, e);
+      sum += e;
+      ++n;
+    }
+  for (const json& p : json::parse(good)["points"]) {
+    const auto b = found.imageToField({p[2].get<double>(), p[3].get<double>()}, 0);
+    ASSERT_TRUE(b);
+    worst_points = std::max(worst_points, std::hypot(b->x - p[0].get<double>(), b->y - p[1].get<double>()));
+  }
+  const json& pos = run["report"]["parameters"]["position_mm"];
+  std::printf("points: field error over camera 1's image mean %.3f mm, largest %.3f mm; at the points %.3f mm; "
+              "position %s\n", sum / n, worst, worst_points, pos.dump().c_str());
+  EXPECT_LT(sum / n, 1.0) << "mm, the mean field error over the image";
+  EXPECT_LT(worst_points, 1.0) << "mm, at the points given";
 }
 
 TEST_F(ConsoleCalibration, ColorsHoldTheLearnedClassesAndRecentBlobs) {

@@ -3,7 +3,8 @@
 // synthetic 1224x1024 cameras over a Division B field (both teams in
 // camera 0's view), publishing on loopback multicast at a port of this
 // process's own, the console on 127.0.0.1 at a free port (--http
-// 127.0.0.1:0; the port and the printed token are read from its log).
+// 127.0.0.1:0; the port and the printed token are read from its log), or
+// `dotvision run --http` on camera 0 alone.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "temp_dir.h"
 
@@ -53,12 +55,21 @@ frames: 1
   ~ConsoleServe() { stop(); }
 
   // Starts serve and waits (up to 60 s) for the console's line in its log.
-  bool start() {
+  bool start() { return startWith({"serve", config_, "--http", "127.0.0.1:0"}); }
+  // The same console from `dotvision run` on camera 0 of the scene alone.
+  bool startRun() {
+    return startWith({"run", "--source", "synthetic://" + dir_.file("scene.yaml") + "/0", "--no-publish", "--quiet",
+                      "--backend", "cpu", "--threads", "1", "--http", "127.0.0.1:0"});
+  }
+  bool startWith(const std::vector<std::string>& args) {
     pid_ = ::fork();
     if (pid_ == 0) {
       if (!freopen(dir_.file("serve.log").c_str(), "w", stdout)) _exit(126);
       ::dup2(STDOUT_FILENO, STDERR_FILENO);
-      execl(DV_CLI_PATH, DV_CLI_PATH, "serve", config_.c_str(), "--http", "127.0.0.1:0", nullptr);
+      std::vector<char*> argv = {const_cast<char*>(DV_CLI_PATH)};
+      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(DV_CLI_PATH, argv.data());
       _exit(127);
     }
     const std::regex line(R"(console: http://127\.0\.0\.1:(\d+)/(#token=([0-9a-f]+))?)");

@@ -49,6 +49,11 @@ void CameraFeed::onFrame(const Frame& frame, const ssl::SSL_WrapperPacket& packe
       frame_.t_arrival = frame.t_arrival;
       frame_.index = frame.index;
       frame_detection_.CopyFrom(packet.detection());
+      frame_setup_.known = processor != nullptr;
+      if (processor) {  // plain structs: no allocation
+        frame_setup_.calibration = processor->camera().calibration();
+        frame_setup_.pipeline = processor->pipeline().options();
+      }
       ++snapshots_;
     }
   }
@@ -63,7 +68,8 @@ bool CameraFeed::detection(ssl::SSL_DetectionFrame& out) {
   return true;
 }
 
-bool CameraFeed::snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFrame& detection, bool& fresh) {
+bool CameraFeed::snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFrame& detection, bool& fresh,
+                          Setup* setup) {
   std::unique_lock<std::mutex> lock(mutex_);
   const uint64_t before = snapshots_;
   snapshot_waiters_.fetch_add(1);
@@ -77,6 +83,7 @@ bool CameraFeed::snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFram
   frame.t_arrival = frame_.t_arrival;
   frame.index = frame_.index;
   detection.CopyFrom(frame_detection_);
+  if (setup) *setup = frame_setup_;
   return true;
 }
 

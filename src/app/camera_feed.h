@@ -17,8 +17,10 @@
 #include "detection/detector.h"
 
 #include "dotvision/ssl_wrapper.pb.h"
+#include "geometry/camera_model.h"
 #include "io/frame_source.h"
 #include "pipeline/blob.h"
+#include "pipeline/pipeline_options.h"
 
 namespace dv::app {
 
@@ -39,7 +41,15 @@ class CameraFeed {
   // The next processed frame with its detections, waiting up to timeout_s;
   // when none comes in time, the last one taken before (false: never one).
   // `fresh` says which it is.
-  bool snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFrame& detection, bool& fresh);
+  // `setup` (optional): the calibration and pipeline options the processor
+  // used on that frame, for the console's own pipeline run (console_layers.h).
+  struct Setup {
+    bool known = false;  // false: no processor had made the frame
+    CameraCalibration calibration;
+    PipelineOptions pipeline;
+  };
+  bool snapshot(double timeout_s, Frame& frame, ssl::SSL_DetectionFrame& detection, bool& fresh,
+                Setup* setup = nullptr);
   // The learned class colors and the recent blobs' colors (chromaticity,
   // color_classes.h), newest last; false before any frame was seen since
   // the first ask (asking keeps them coming for the next few seconds).
@@ -66,6 +76,7 @@ class CameraFeed {
   uint64_t snapshots_ = 0;  // frames copied for snapshots
   Frame frame_;             // the newest of them
   ssl::SSL_DetectionFrame frame_detection_;
+  Setup frame_setup_;
   std::atomic<int64_t> colors_wanted_until_ms_{0};
   bool have_colors_ = false;
   Colors colors_;          // blobs: a ring of kBlobRing, reserved once

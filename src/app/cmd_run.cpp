@@ -18,10 +18,12 @@
 #include "app/camera_runner.h"
 #include "app/commands.h"
 #include "app/packet_outputs.h"
+#include "app/run_console.h"
 #include "app/run_progress.h"
 #include "app/signals.h"
 #include "camera/open_camera.h"
 #include "app/debug_views.h"
+#include "app/synthetic_camera.h"
 #include "app/synthetic_source.h"
 #include "core/clock.h"
 #include "core/error.h"
@@ -73,6 +75,8 @@ struct RunArgs {
   std::vector<std::string> camera_set;
   std::optional<double> robot_height, robot_height_yellow, robot_height_blue;
   double status_interval = 5;
+  std::string http;  // --http: the console
+  bool http_given = false;
 };
 
 OutputOptions outputOptions(const RunArgs& a, bool publish_geometry) {
@@ -272,27 +276,41 @@ Geometry sourceGeometry(const RunArgs& a, bool& from_network) {
 // A camera, or files paced with --realtime: capture and processing threads
 // with the latest frame winning, a status line every few seconds, and a
 // summary with the latency from a frame's arrival to its packet.
-int runLive(const RunArgs& a, const CameraCalibration& calibration, const FieldModel& field,
+int runLive(const RunArgs& a, const CameraCalibration& calibration, const Geometry& geometry,
             std::unique_ptr<CameraSource> source, PacketOutputs& outputs) {
+  const FieldModel& field = geometry.field;
   const std::string name = source->describe();
   auto log = [](const std::string& line) {
     std::fprintf(stderr, "dotvision run: %s\n", line.c_str());
   };
   CameraRunner runner(calibration, field, processorOptions(a), std::move(source), outputs, log);
+  // The console of serve over this one camera; it hooks in before the start.
+  std::unique_ptr<RunConsole> console;
+  if (a.http_given) console = std::make_unique<RunConsole>(runner, geometry, outputs, a.http, log);
   const auto started = Clock::now();
   runner.start();
-  auto next_status = started + std::chrono::duration<double>(a.status_interval);
+  if (console) console->start();
+  auto next_line = started + std::chrono::duration<double>(a.status_interval);
+  auto next_second = started + std::chrono::seconds(1);
   CameraStatus last;
   while (!stopRequested() && !runner.ended()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(console ? 20 : 50));
     outputs.tick();
-    if (Clock::now() >= next_status) {
+    if (console) console->service();
+    const auto now = Clock::now();
+    // Once a second (the console's rates and health), the line at the interval.
+    if (console ? now >= next_second : now >= next_line) {
+      next_second = now + std::chrono::seconds(1);
       last = runner.status();
+      if (console) console->setStatus(last);
+    }
+    if (now >= next_line) {
       if (!a.quiet && a.status_interval > 0) std::fprintf(stderr, "%s", statusLine(last).c_str());
-      next_status += std::chrono::duration<double>(a.status_interval);
+      next_line += std::chrono::duration<double>(a.status_interval);
     }
     if (a.max_frames >= 0 && runner.processed() >= static_cast<uint64_t>(a.max_frames)) break;
   }
+  console.reset();
   runner.stop();
   outputs.finish();
   last = runner.status();
@@ -319,13 +337,19 @@ int runLive(const RunArgs& a, const CameraCalibration& calibration, const FieldM
 
 int runOnSource(const RunArgs& a) {
   bool from_network = false;
-  const Geometry geometry = sourceGeometry(a, from_network);
-  const std::string geometry_source = from_network ? std::string("network geometry") : a.geometry;
+  // synthetic://SCENE/ID: a camera of a synthetic scene, live, with the
+  // scene's geometry unless --geometry says otherwise.
+  std::unique_ptr<SyntheticCamera> synthetic;
+  if (isSyntheticSpec(a.source)) synthetic = std::make_unique<SyntheticCamera>(a.source);
+  const Geometry geometry = synthetic && a.geometry.empty() ? synthetic->geometry() : sourceGeometry(a, from_network);
+  const std::string geometry_source =
+      from_network ? std::string("network geometry") : a.geometry.empty() ? a.source : a.geometry;
   const CameraCalibration* calibration = nullptr;
-  if (a.camera_id) {
-    calibration = geometry.camera(*a.camera_id);
+  if (a.camera_id || synthetic) {
+    calibration = geometry.camera(a.camera_id ? *a.camera_id : synthetic->cameraId());
     if (!calibration)
-      throw InputError(geometry_source, "no calibration for camera id " + std::to_string(*a.camera_id) +
+      throw InputError(geometry_source, "no calibration for camera id " +
+                                            std::to_string(a.camera_id ? *a.camera_id : synthetic->cameraId()) +
                                             " (calibrations present: " + cameraIds(geometry) + ")");
   } else if (geometry.cameras.size() == 1) {
     calibration = &geometry.cameras.front();
@@ -341,12 +365,15 @@ int runOnSource(const RunArgs& a) {
   so.realtime = a.realtime;
   for (const std::string& item : a.camera_set) so.settings.push_back(parseCameraSetting(item, "--camera-set"));
   std::vector<std::string> settings_report;
-  std::unique_ptr<CameraSource> source = openCameraSource(a.source, so, &settings_report);
+  std::unique_ptr<CameraSource> source =
+      synthetic ? std::move(synthetic) : openCameraSource(a.source, so, &settings_report);
   for (const std::string& line : settings_report)
     std::printf("dotvision run: %s: %s\n", a.source.c_str(), line.c_str());
 
   PacketOutputs outputs(outputOptions(a, !from_network), toProto(geometry));
-  if (source->live()) return runLive(a, *calibration, geometry.field, std::move(source), outputs);
+  if (source->live()) return runLive(a, *calibration, geometry, std::move(source), outputs);
+  if (a.http_given)
+    throw InputError("--http", "the console needs a live source: a camera, synthetic://SCENE/ID, or files with --realtime");
 
   RunState state{a, geometry.field, processorOptions(a), outputs, {}, {}, false, {}};
   std::vector<Channel> channels(1);
@@ -442,6 +469,7 @@ CommandFn addRunCommand(CLI::App& root) {
       "Without --source it runs on the built-in synthetic scene and compares with its truth.");
   cmd->add_option("--source", a->source,
                   "genicam://ID (Aravis id or serial; genicam:// for the only camera), v4l2:///dev/videoN, "
+                  "synthetic://SCENE/ID (a camera of a synthetic scene, live; its geometry unless --geometry), "
                   "rtsp://..., http://... (MJPEG), image file, directory of images (sorted by name; in a `dotvision synth` directory only "
                   "the chosen camera's frames), quoted glob ('dir/*.png') or video file. Color images are "
                   "RGB; 8-bit single-channel images are Bayer mosaics");
@@ -500,6 +528,10 @@ CommandFn addRunCommand(CLI::App& root) {
                   "seconds between status lines of a live run (default 5; 0: none)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", a->quiet, "no progress or status lines on the terminal");
+  cmd->add_option("--http", a->http,
+                  "a live run: host serve's console in the browser here, IPv4ADDR:PORT (e.g. 127.0.0.1:8080; "
+                  "port 0: a free one)")
+      ->each([a](const std::string&) { a->http_given = true; });
 
   return [a] {
     installSignalHandlers();  // first: every thread started later inherits the blocked signals

@@ -58,6 +58,14 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   if (ec) throw InputError(path, "cannot replace the config: " + ec.message());
 }
 
+// dotvision run has no config file: its settings are its command line.
+bool refusedWithoutConfig(const ConsoleState& state, httplib::Response& res) {
+  if (!state.configPath().empty()) return false;
+  sendError(res, 409, "this process has no config file to change (dotvision run takes its settings from the "
+                      "command line; dotvision serve SITE.yaml has one)");
+  return true;
+}
+
 // The new config text goes the SIGHUP way: validated as a whole (a bad one
 // is refused with its errors and the running config stays), then applied
 // by the main loop; saved to the file only when asked.
@@ -140,14 +148,19 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
     if (!layers) return sendError(res, 400, why);
     double width = 960;
     if (!numberParam(req, res, "width", 16, 8192, width)) return;
-    Frame frame;
-    ssl::SSL_DetectionFrame detection;
-    bool fresh = false;
-    if (!feed->snapshot(2.0, frame, detection, fresh))
-      return sendError(res, 503, "camera " + std::to_string(feed->cameraId()) + " has processed no frame yet");
     const Geometry geometry = state.geometry();
-    const cv::Mat img = renderSnapshot(frame, detection, geometry.camera(feed->cameraId()), geometry.field, *layers,
-                                       static_cast<int>(width));
+    SnapshotSource source;
+    bool fresh = false;
+    if (layers->needsPipeline()) {
+      // The console's own pipeline run (console_layers.h), rate-limited per camera.
+      if (!state.layers().take(*feed, geometry.field, layers->base, source, fresh, why)) return sendError(res, 503, why);
+    } else {
+      if (!feed->snapshot(2.0, source.frame, source.detection, fresh))
+        return sendError(res, 503, "camera " + std::to_string(feed->cameraId()) + " has processed no frame yet");
+      if (const CameraCalibration* cal = geometry.camera(feed->cameraId())) source.calibration = *cal;
+    }
+    const cv::Mat img = renderSnapshot(source, geometry.field, *layers, static_cast<int>(width));
+    const Frame& frame = source.frame;
     const bool png = req.matches[2].str() == "png";
     std::vector<uchar> bytes;
     if (!cv::imencode(png ? ".png" : ".jpg", img, bytes, png ? std::vector<int>{} :
@@ -158,6 +171,20 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
     res.set_header("X-Dotvision-Fresh", fresh ? "1" : "0");
     res.set_header("X-Dotvision-Source-Size", std::to_string(frame.image.cols) + "x" + std::to_string(frame.image.rows));
     res.set_content(std::string(bytes.begin(), bytes.end()), png ? "image/png" : "image/jpeg");
+  });
+
+  // The rectified grid the grid layers are drawn on: grid px (gx, gy), cell
+  // centers at integers, lie at field mm (x0 + gx * mm_per_cell, y0 - gy * mm_per_cell)
+  // on the plane z = plane_height_mm.
+  server.Get(R"(/api/cameras/(\d+)/grid)", [&state](const httplib::Request& req, httplib::Response& res) {
+    CameraFeed* feed = cameraOf(state, req, res);
+    if (!feed) return;
+    RectifiedGrid grid;
+    double plane = 0;
+    std::string why;
+    if (!state.layers().grid(*feed, state.geometry().field, grid, plane, why)) return sendError(res, 503, why);
+    sendJson(res, {{"camera_id", feed->cameraId()}, {"width", grid.width}, {"height", grid.height},
+                   {"x0_mm", grid.x0}, {"y0_mm", grid.y0}, {"mm_per_cell", grid.scale}, {"plane_height_mm", plane}});
   });
 
   // A pixel of camera ID's full-size image -> the field point it sees at
@@ -190,12 +217,14 @@ void addConsoleApi(httplib::Server& server, ConsoleState& state) {
   static std::mutex edit_mutex;
   server.Put("/api/config", [&state](const httplib::Request& req, httplib::Response& res) {
     std::lock_guard<std::mutex> lock(edit_mutex);
+    if (refusedWithoutConfig(state, res)) return;
     applyConfigText(state, req, res, req.body, true);
   });
   // {"robot_heights.default": 130, "detector.tracking": false}: the keys
   // changed in the running config's text (config_edit.h), then as PUT.
   server.Patch("/api/config", [&state](const httplib::Request& req, httplib::Response& res) {
     std::lock_guard<std::mutex> lock(edit_mutex);
+    if (refusedWithoutConfig(state, res)) return;
     json edits;
     try {
       edits = json::parse(req.body);

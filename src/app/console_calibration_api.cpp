@@ -1,7 +1,8 @@
 // The console's calibration routes and its log:
 //   POST /api/cameras/ID/calibrate            (token) start a run on the newest frame;
 //        body (optional JSON): {"region": "x<0", "near": "X,Y" | [X,Y], "camera_height": MM,
-//        "num_cameras": N, "points": [[X,Y,U,V], ...] (four or more: the four-point mode)}
+//        "num_cameras": N, "points": [[X,Y,U,V], ...] (four or more: the four-point mode;
+//        a set that cannot fix a pose is refused with 400 at once)}
 //   GET  /api/cameras/ID/calibration          its state, report and the lines found
 //   GET  /api/cameras/ID/calibration/overlay.jpg?width=W
 //   POST /api/cameras/ID/calibration/accept   (token) body {"publisher": "ADDR[:PORT]"} optional
@@ -13,7 +14,7 @@
 
 #include "app/console_http.h"
 #include "app/console_state.h"
-#include "app/site_runtime.h"
+#include "app/console_host.h"
 #include "core/error.h"
 // Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
 #include <httplib.h>
@@ -98,6 +99,16 @@ void addCalibrationApi(httplib::Server& server, ConsoleState& state) {
     bool fresh = false;
     if (!feed->snapshot(2.0, frame, detection, fresh))
       return sendError(res, 503, "camera " + std::to_string(feed->cameraId()) + " has processed no frame yet");
+    // Points that cannot fix a pose are refused at once, with the reason.
+    if (!request.points.empty()) {
+      const int w = frame.image.cols, h = frame.image.rows;
+      for (const PointCorrespondence& p : request.points)
+        if (!(p.image.u >= 0 && p.image.v >= 0 && p.image.u <= w - 1 && p.image.v <= h - 1))
+          return sendError(res, 400, "points: (" + std::to_string(p.image.u) + ", " + std::to_string(p.image.v) +
+                                         ") lies outside the " + std::to_string(w) + "x" + std::to_string(h) + " image");
+      if (const auto why = pointSetProblem(request.points, w, h))
+        return sendError(res, 400, "points: they cannot fix a camera pose: " + *why);
+    }
     if (!state.calibrations().start(frame, field, request))
       return sendError(res, 409, "camera " + std::to_string(feed->cameraId()) + ": a calibration is still running");
     sendJson(res, state.calibrations().describe(feed->cameraId()), 202);
@@ -138,7 +149,7 @@ void addCalibrationApi(httplib::Server& server, ConsoleState& state) {
     if (!cal) return sendError(res, 409, why);
     const CameraCalibration c = *cal;
     const ConsoleState::TaskResult r = state.onMainLoop(
-        [c, publisher](SiteRuntime& runtime) { return runtime.setCalibration(c, publisher); }, 15);
+        [c, publisher](ConsoleHost& runtime) { return runtime.setCalibration(c, publisher); }, 15);
     if (!r.applied) return sendError(res, 503, "serve's main loop did not take the calibration within 15 s");
     if (!r.error.empty()) return sendError(res, 400, r.error);
     state.setCameraCalibration(c);

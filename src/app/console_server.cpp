@@ -9,7 +9,8 @@
 #include "app/console_api.h"
 #include "app/console_assets.h"
 #include "app/console_state.h"
-#include "app/site_runtime.h"
+#include "app/camera_runner.h"
+#include "app/console_host.h"
 #include "core/error.h"
 // Last: it brings <resolv.h>, whose _res macro breaks Eigen headers included after it.
 #include <httplib.h>
@@ -43,7 +44,7 @@ std::string contentType(const std::string& name) {
   return "text/plain; charset=utf-8";
 }
 
-std::vector<uint32_t> cameraIds(SiteRuntime& rt) {
+std::vector<uint32_t> cameraIds(ConsoleHost& rt) {
   std::vector<uint32_t> ids;
   for (size_t i = 0; i < rt.cameraCount(); ++i) ids.push_back(rt.runner(i).cameraId());
   return ids;
@@ -61,7 +62,7 @@ std::string readTokenFile(const std::string& path) {
   return line.substr(a, b - a + 1);
 }
 
-ConsoleServer::ConsoleServer(SiteRuntime& runtime, const std::string& config_text, const ConsoleOptions& options,
+ConsoleServer::ConsoleServer(ConsoleHost& runtime, const std::string& config_text, const ConsoleOptions& options,
                              LogFn log)
     : state_(std::make_unique<ConsoleState>(runtime.geometry(), cameraIds(runtime), runtime.config(), config_text)),
       server_(std::make_unique<httplib::Server>()),
@@ -121,7 +122,7 @@ ConsoleServer::ConsoleServer(SiteRuntime& runtime, const std::string& config_tex
   }
 }
 
-std::unique_ptr<ConsoleServer> makeConsole(SiteRuntime& runtime, const std::string* http_override,
+std::unique_ptr<ConsoleServer> makeConsole(ConsoleHost& runtime, const std::string* http_override,
                                            std::function<void(const std::string&)> log,
                                            std::shared_ptr<const LogRing> log_ring) {
   const SiteConfig& config = runtime.config();
@@ -156,7 +157,7 @@ void ConsoleServer::stop() {
 
 std::string ConsoleServer::url() const { return "http://" + host_ + ":" + std::to_string(port_) + "/"; }
 
-void ConsoleServer::service(SiteRuntime& runtime) { state_->service(runtime); }
+void ConsoleServer::service(ConsoleHost& host) { state_->service(host); }
 
 void ConsoleServer::setStatus(const nlohmann::json& status) { state_->setStatus(status); }
 

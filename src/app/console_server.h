@@ -20,7 +20,7 @@ namespace dv::app {
 
 class ConsoleState;
 class LogRing;
-class SiteRuntime;
+class ConsoleHost;
 
 struct ConsoleOptions {
   std::string host = "127.0.0.1";
@@ -35,22 +35,22 @@ std::string readTokenFile(const std::string& path);
 
 class ConsoleServer;
 
-// The console serve asks for: `http_override` (serve --http, when given)
+// The console serve or run asks for: `http_override` (--http, when given)
 // else the config's console.http; "" is none (nullptr). The token from the
 // config's token_file, else a random one. A console that cannot listen is
 // logged and left out (the cameras matter more); a token file that cannot
 // be read throws InputError.
-std::unique_ptr<ConsoleServer> makeConsole(SiteRuntime& runtime, const std::string* http_override,
+std::unique_ptr<ConsoleServer> makeConsole(ConsoleHost& host, const std::string* http_override,
                                            std::function<void(const std::string&)> log,
                                            std::shared_ptr<const LogRing> log_ring = nullptr);
 
 class ConsoleServer {
  public:
   using LogFn = std::function<void(const std::string&)>;
-  // Installs its frame hook on every camera of `runtime` (call before
-  // runtime.start()) and binds the port. Throws InputError when it cannot
+  // Installs its frame hook on every camera of `host` (call before the
+  // cameras start) and binds the port. Throws InputError when it cannot
   // listen there.
-  ConsoleServer(SiteRuntime& runtime, const std::string& config_text, const ConsoleOptions& options, LogFn log);
+  ConsoleServer(ConsoleHost& host, const std::string& config_text, const ConsoleOptions& options, LogFn log);
   ~ConsoleServer();
 
   void start();  // serves from its own thread
@@ -59,9 +59,9 @@ class ConsoleServer {
   const std::string& token() const { return token_; }
   std::string url() const;
 
-  // serve's main loop: each turn (applies config changes asked for on the
-  // console to the runtime), and once a second (the status document).
-  void service(SiteRuntime& runtime);
+  // The host's main loop: each turn (applies config changes and
+  // calibrations asked for on the console to the host), and once a second (the status document).
+  void service(ConsoleHost& host);
   void setStatus(const nlohmann::json& status);
 
  private:

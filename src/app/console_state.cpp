@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "app/site_runtime.h"
+#include "app/console_host.h"
 #include "core/error.h"
 
 namespace dv::app {
@@ -80,7 +80,7 @@ ConsoleState::TaskResult ConsoleState::onMainLoop(Task task, double timeout_s) {
 
 ConsoleState::ReloadResult ConsoleState::reload(const SiteConfig& next, const std::string& text, double timeout_s) {
   const TaskResult r = onMainLoop(
-      [this, next, text](SiteRuntime& runtime) {
+      [this, next, text](ConsoleHost& runtime) {
         std::vector<std::string> notes = runtime.reload(next);
         std::lock_guard<std::mutex> lock(mutex_);
         if (next.console.http != config_.console.http || next.console.token_file != config_.console.token_file)
@@ -95,7 +95,7 @@ ConsoleState::ReloadResult ConsoleState::reload(const SiteConfig& next, const st
   return r;
 }
 
-void ConsoleState::service(SiteRuntime& runtime) {
+void ConsoleState::service(ConsoleHost& runtime) {
   for (;;) {
     std::shared_ptr<Job> job;
     {

@@ -1,6 +1,7 @@
 #pragma once
-// What the console's HTTP threads share with serve's main loop. The main
-// loop owns the SiteRuntime, which is not thread-safe: it publishes the
+// What the console's HTTP threads share with the host's main loop (serve's
+// or run's, console_host.h). The main loop owns the host, which is not
+// thread-safe: it publishes the
 // status document once a second here, and a config change asked for on the
 // console is queued here and applied by the main loop (service()) exactly
 // as a SIGHUP reload; the HTTP thread waits for the notes. Camera images
@@ -17,13 +18,14 @@
 
 #include "app/camera_feed.h"
 #include "app/console_calibration.h"
+#include "app/console_layers.h"
 #include "app/log_ring.h"
 #include "app/site_config.h"
 #include "geometry/geometry_io.h"
 
 namespace dv::app {
 
-class SiteRuntime;
+class ConsoleHost;
 
 class ConsoleState {
  public:
@@ -34,7 +36,7 @@ class ConsoleState {
   // Main loop: once a second.
   void setStatus(nlohmann::json status);
   // Main loop: each turn; applies the queued config changes.
-  void service(SiteRuntime& runtime);
+  void service(ConsoleHost& host);
 
   // HTTP threads.
   nlohmann::json status() const;
@@ -48,6 +50,7 @@ class ConsoleState {
   SiteConfig config() const;
   const std::string& configPath() const { return config_path_; }
   CalibrationRuns& calibrations() { return calibrations_; }
+  LayerPipelines& layers() { return layers_; }
   // serve's recent log lines (null: none kept).
   void setLogRing(std::shared_ptr<const LogRing> ring) { log_ring_ = std::move(ring); }
   const LogRing* logRing() const { return log_ring_.get(); }
@@ -61,7 +64,7 @@ class ConsoleState {
   // Runs `task` on the main loop (the runtime is its alone) and waits up to
   // timeout_s for its notes; an InputError it throws comes back as the
   // single note with applied true and `error` set.
-  using Task = std::function<std::vector<std::string>(SiteRuntime&)>;
+  using Task = std::function<std::vector<std::string>(ConsoleHost&)>;
   struct TaskResult : ReloadResult {
     std::string error;
   };
@@ -81,6 +84,7 @@ class ConsoleState {
   std::string config_text_;
   std::deque<std::shared_ptr<Job>> jobs_;
   std::shared_ptr<const LogRing> log_ring_;
+  LayerPipelines layers_;
   CalibrationRuns calibrations_;  // last: its workers may still touch the members above
 };
 

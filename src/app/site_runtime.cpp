@@ -242,13 +242,7 @@ std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c,
   const std::string name = "camera " + std::to_string(c.camera_id);
   auto runner = std::find_if(runners_.begin(), runners_.end(), [&](const auto& r) { return r->cameraId() == c.camera_id; });
   if (runner == runners_.end()) throw InputError(name, "no camera of this id runs here");
-  std::vector<std::string> notes;
-  (*runner)->setCalibration(c);
-  notes.push_back(name + ": its processor uses the new calibration from the next frame");
-  for (CameraCalibration& old : geometry_.cameras)
-    if (old.camera_id == c.camera_id) old = c;
-  outputs_->setGeometry(toProto(geometry_));
-  if (outputs_->publishesGeometry()) notes.push_back("the published geometry has the new calibration");
+  std::vector<std::string> notes = useCalibration(**runner, geometry_, *outputs_, c);
   // To a geometry publisher, in this process or outside, the wire way.
   std::string addr = "127.0.0.1";
   uint16_t port = kGeometryListenPort;

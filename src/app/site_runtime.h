@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/camera_runner.h"
+#include "app/console_host.h"
 #include "app/packet_outputs.h"
 #include "app/site_config.h"
 #include "geometry/geometry_io.h"
@@ -29,19 +30,19 @@ class GeometryPublisher;
 
 namespace dv::app {
 
-class SiteRuntime {
+class SiteRuntime : public ConsoleHost {
  public:
   using LogFn = std::function<void(const std::string&)>;
   // Throws InputError when no camera can run or the geometry cannot be had.
   SiteRuntime(const SiteConfig& config, LogFn log);
-  ~SiteRuntime();
+  ~SiteRuntime() override;
 
   void start();
   void stop();
   // Once a second from the main loop: status records (health changes are logged).
   std::vector<CameraStatus> status();
   // A validated new config; returns what was applied and what was not.
-  std::vector<std::string> reload(const SiteConfig& next);
+  std::vector<std::string> reload(const SiteConfig& next) override;
   // The game controller's teams changed: new heights from the next frame
   // (unknown team names are logged once each).
   void setReferee(const RefereeSnapshot& referee);
@@ -52,15 +53,15 @@ class SiteRuntime {
   // "publisher") it is sent there, to `publisher` (ADDR or ADDR:PORT; ""
   // 127.0.0.1:10013). Returns what was done; throws InputError when no
   // camera of that id runs or the publisher address is bad.
-  std::vector<std::string> setCalibration(const CameraCalibration& c, const std::string& publisher);
+  std::vector<std::string> setCalibration(const CameraCalibration& c, const std::string& publisher) override;
   // Writes the raw rings (record.raw_dir) to a new folder, off the main
   // loop's thread; `why` goes into the log line. False when no ring is kept
   // or a dump is still being written.
   bool dumpRaw(const std::string& why);
-  const SiteConfig& config() const { return config_; }
-  const Geometry& geometry() const { return geometry_; }
-  size_t cameraCount() const { return runners_.size(); }
-  CameraRunner& runner(size_t i) { return *runners_[i]; }
+  const SiteConfig& config() const override { return config_; }
+  const Geometry& geometry() const override { return geometry_; }
+  size_t cameraCount() const override { return runners_.size(); }
+  CameraRunner& runner(size_t i) override { return *runners_[i]; }
   std::string outputsSummary() const { return outputs_->describe(); }
   void finish() { outputs_->finish(); }
 

@@ -28,6 +28,8 @@ struct CameraCalibration {
   uint32_t image_width = 0;  // px, 0 = unknown
   uint32_t image_height = 0;
 
+  bool operator==(const CameraCalibration&) const = default;
+
   // Calibration of a camera at `position` (field mm) whose rotation is R
   // (field -> camera), with t = -R C.
   static CameraCalibration fromPose(uint32_t id, double focal, double cx, double cy, double k,

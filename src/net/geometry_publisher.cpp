@@ -126,14 +126,6 @@ std::string ipText(uint32_t addr) {
   return buf;
 }
 
-bool sameCalibration(const CameraCalibration& a, const CameraCalibration& b) {
-  return a.camera_id == b.camera_id && a.focal_length == b.focal_length &&
-         a.principal_point_x == b.principal_point_x && a.principal_point_y == b.principal_point_y &&
-         a.distortion == b.distortion && a.q0 == b.q0 && a.q1 == b.q1 && a.q2 == b.q2 && a.q3 == b.q3 &&
-         a.tx == b.tx && a.ty == b.ty && a.tz == b.tz && a.image_width == b.image_width &&
-         a.image_height == b.image_height;
-}
-
 // A processor that has not seen a frame yet leaves the image size out; keep
 // what an earlier calibration of that camera said.
 void keepKnownImageSize(CameraCalibration& incoming, const CameraCalibration* known) {
@@ -275,7 +267,7 @@ GeometryPublisher::Verdict GeometryPublisher::handleDatagram(const char* data, s
       std::sort(geometry_.cameras.begin(), geometry_.cameras.end(),
                 [](const auto& a, const auto& b) { return a.camera_id < b.camera_id; });
       changed_ = true;
-    } else if (!sameCalibration(*it, c)) {
+    } else if (*it != c) {
       spdlog::info("geometry publisher: camera {} recalibrated by {}", c.camera_id, ipText(sender));
       *it = c;
       changed_ = true;

@@ -1,5 +1,6 @@
 // The Calibration page: runs the automatic calibration (or the four-point
-// one) on a camera's newest frame on the server, polls its state, shows the
+// one, on known field points the operator picked on the image: the lines'
+// crossings and corners from the geometry) on a camera's newest frame on the server, polls its state, shows the
 // frame with the segments found and the model lines through the result, the
 // quality figures and the verdict; Accept makes it the camera's calibration.
 'use strict';
@@ -23,6 +24,47 @@ function figureRows(j) {
   return rows;
 }
 
+// The field points an operator can find in an image: where two painted lines
+// (segments of the geometry) cross or meet, and where the center circle
+// meets a line; each named by its lines and rounded to the millimetre.
+function knownFieldPoints(field) {
+  const lines = field.fieldLines || [], arcs = field.fieldArcs || [], out = [];
+  const add = (x, y, name) => {
+    x = Math.round(x) + 0, y = Math.round(y) + 0;  // + 0: no -0
+    if (!out.some((p) => Math.hypot(p.x - x, p.y - y) < 5)) out.push({ x, y, name });
+  };
+  const tol = 1;  // mm beyond a segment's end that still counts as meeting it
+  for (let i = 0; i < lines.length; ++i)
+    for (let j = i + 1; j < lines.length; ++j) {
+      const a = lines[i], b = lines[j];
+      const dx1 = a.p2.x - a.p1.x, dy1 = a.p2.y - a.p1.y, dx2 = b.p2.x - b.p1.x, dy2 = b.p2.y - b.p1.y;
+      const den = dx1 * dy2 - dy1 * dx2;
+      const len1 = Math.hypot(dx1, dy1), len2 = Math.hypot(dx2, dy2);
+      if (Math.abs(den) < 1e-9 * len1 * len2) continue;  // parallel
+      const t = ((b.p1.x - a.p1.x) * dy2 - (b.p1.y - a.p1.y) * dx2) / den;
+      const u = ((b.p1.x - a.p1.x) * dy1 - (b.p1.y - a.p1.y) * dx1) / den;
+      if (t * len1 < -tol || (t - 1) * len1 > tol || u * len2 < -tol || (u - 1) * len2 > tol) continue;
+      add(a.p1.x + t * dx1, a.p1.y + t * dy1, `${a.name} × ${b.name}`);
+    }
+  for (const c of arcs)
+    for (const l of lines) {
+      // |p1 + t d - center| = r along the segment
+      const dx = l.p2.x - l.p1.x, dy = l.p2.y - l.p1.y, fx = l.p1.x - c.center.x, fy = l.p1.y - c.center.y;
+      const A = dx * dx + dy * dy, B = 2 * (fx * dx + fy * dy), C = fx * fx + fy * fy - c.radius * c.radius;
+      const disc = B * B - 4 * A * C;
+      if (A === 0 || disc <= 0) continue;
+      for (const t of [(-B - Math.sqrt(disc)) / (2 * A), (-B + Math.sqrt(disc)) / (2 * A)]) {
+        if (t < 0 || t > 1) continue;
+        const x = l.p1.x + t * dx, y = l.p1.y + t * dy;
+        const a1 = c.a1 || 0, a2 = c.a2 || 0;
+        let ang = Math.atan2(y - c.center.y, x - c.center.x);
+        while (ang < a1) ang += 2 * Math.PI;
+        if (ang - a1 <= a2 - a1 + 1e-6) add(x, y, `${c.name} × ${l.name}`);
+      }
+    }
+  return out.sort((p, q) => p.x - q.x || q.y - p.y);
+}
+
 async function calibrationPage() {
   const cams = (await dv.get('/api/cameras')).cameras;
   const select = document.getElementById('camera');
@@ -33,6 +75,7 @@ async function calibrationPage() {
   const img = document.getElementById('image');
   const notes = document.getElementById('notes');
   let shown = '';  // the state whose image is on the page
+  const picked = [];  // the four-point fallback's points: {x, y (field mm), name, u, v (image px)}
 
   const show = (j) => {
     document.getElementById('state').textContent = `camera ${j.camera_id}: ${j.state}` +
@@ -68,10 +111,7 @@ async function calibrationPage() {
     if (region) body.region = region;
     if (near) body.near = near;
     if (height > 0) body.camera_height = height;
-    const lines = document.getElementById('points').value.split('\n').map((l) => l.trim()).filter((l) => l);
-    if (lines.length) {
-      body.points = lines.map((l) => l.split(/[,=\s]+/).map(Number));
-    }
+    if (picked.length) body.points = picked.map((p) => [p.x, p.y, p.u, p.v]);
     const r = await dv.send('POST', `/api/cameras/${id()}/calibrate`, JSON.stringify(body));
     notes.textContent = r.status === 202 ? 'running on the newest frame…' : r.body.error;
     if (r.status === 202) { shown = ''; show(r.body); }
@@ -82,15 +122,58 @@ async function calibrationPage() {
       notes.textContent = r.status === 200 ? (r.body.notes || ['rejected']).join('\n') : r.body.error;
       refresh();
     });
-  // The four-point fallback: a click adds the pixel under it, full-size.
-  img.addEventListener('click', (ev) => {
+  // The four-point fallback: choose a known field point, click where the
+  // image shows it (full-size image px, centers at integers).
+  const known = knownFieldPoints((await dv.get('/api/geometry')).field || {});
+  const knownSelect = document.getElementById('known');
+  known.forEach((p, i) => knownSelect.add(new Option(`${p.name} (${p.x}, ${p.y})`, i)));
+  const view = document.getElementById('view');
+  const showPicked = () => {
+    const body = document.querySelector('#picked tbody');
+    body.innerHTML = '';
+    for (const m of view.querySelectorAll('.pick-mark')) m.remove();
+    const [w, h] = imageSize();
+    picked.forEach((p, i) => {
+      const tr = document.createElement('tr');
+      tr.innerHTML = '<td></td><td></td><td></td><td><button class="secondary">remove</button></td>';
+      tr.children[0].textContent = p.name;
+      tr.children[1].textContent = `${p.x}, ${p.y}`;
+      tr.children[2].textContent = `${p.u.toFixed(1)}, ${p.v.toFixed(1)}`;
+      tr.querySelector('button').addEventListener('click', () => { picked.splice(i, 1); showPicked(); });
+      body.appendChild(tr);
+      if (!w) return;
+      const mark = document.createElement('div');
+      mark.className = 'pick-mark';
+      mark.style.left = `${((p.u + 0.5) / w) * 100}%`;
+      mark.style.top = `${((p.v + 0.5) / h) * 100}%`;
+      mark.innerHTML = '<span></span>';
+      mark.firstChild.textContent = `${p.x}, ${p.y}`;
+      view.appendChild(mark);
+    });
+    document.getElementById('picked').dataset.count = picked.length;
+  };
+  const imageSize = () => {
     const [w, h] = (img.dataset.size || '').split('x').map(Number);
     const c = cams.find((x) => String(x.camera_id) === id()) || {};
-    const fw = w || c.image_width, fh = h || c.image_height;
-    if (!fw) return;
-    const u = ev.offsetX / img.clientWidth * fw, v = ev.offsetY / img.clientHeight * fh;
-    const area = document.getElementById('points');
-    area.closest('details').open = true;
-    area.value += (area.value && !area.value.endsWith('\n') ? '\n' : '') + `X,Y=${u.toFixed(1)},${v.toFixed(1)}`;
+    return [w || c.image_width, h || c.image_height];
+  };
+  document.getElementById('clear-points').addEventListener('click', () => { picked.length = 0; showPicked(); });
+  select.addEventListener('change', () => { picked.length = 0; showPicked(); });
+  img.addEventListener('click', (ev) => {
+    const [fw, fh] = imageSize();
+    const k = known[Number(knownSelect.value)];
+    if (!fw || !k) return;
+    document.getElementById('picker').open = true;
+    const u = Math.max(0, (ev.offsetX / img.clientWidth) * fw - 0.5);
+    const v = Math.max(0, (ev.offsetY / img.clientHeight) * fh - 0.5);
+    const again = picked.findIndex((p) => p.x === k.x && p.y === k.y);
+    if (again >= 0) picked.splice(again, 1);  // clicked anew: the later click counts
+    picked.push({ ...k, u, v });
+    // On to the next point not picked yet.
+    for (let i = 1; i <= known.length; ++i) {
+      const n = (Number(knownSelect.value) + i) % known.length;
+      if (!picked.some((p) => p.x === known[n].x && p.y === known[n].y)) { knownSelect.value = n; break; }
+    }
+    showPicked();
   });
 }
