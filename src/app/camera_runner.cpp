@@ -125,6 +125,12 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   stamp.t_sent = unixSeconds();
   fillDetectionPacket(detections_, stamp, packet_);
   outputs_.detection(packet_);
+  // Strings only when a color state changes (color_health.h).
+  const unsigned color_changes = colors_.update(processor_->detector().health());
+  if (color_changes || colors_.castChanged())
+    colors_.sayChanges(color_changes, [&](bool warning, const std::string& text) {
+      log_("camera " + std::to_string(calibration_.camera_id) + (warning ? ": warning: " : ": ") + text);
+    });
   const double arrival = frame.t_arrival > 0 ? frame.t_arrival : t_taken;
   const double t_done = unixSeconds();
   for (const FrameHook& hook : hooks_) hook(frame, packet_);

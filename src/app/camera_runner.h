@@ -16,6 +16,7 @@
 
 #include "app/camera_processor.h"
 #include "app/packet_outputs.h"
+#include "detection/color_health.h"
 #include "live/camera_status.h"
 #include "live/health_monitor.h"
 #include "live/latency_window.h"
@@ -96,6 +97,7 @@ class CameraRunner {
   uint64_t last_in_ = 0, last_processed_ = 0;
   double last_status_t_ = 0;
   HealthMonitor health_;
+  ColorHealthWatch colors_;  // processing thread only
   std::vector<double> scratch_;
 
   LiveCamera camera_;  // last: its threads use the members above

@@ -32,6 +32,7 @@
 #include "geometry/geometry_io.h"
 #include "net/geometry_publisher.h"
 #include "geometry/proto_json.h"
+#include "detection/color_health.h"
 #include "detection/detection_frame.h"
 #include "io/frame_source.h"
 #include "io/ssl_log.h"
@@ -103,6 +104,7 @@ struct Channel {
   long robots = 0;
   long balls = 0;
   std::vector<double> pipeline_ms, detection_ms, total_ms;
+  ColorHealthWatch colors;  // color classes missing or collapsing (color_health.h)
 };
 
 struct RunState {
@@ -173,6 +175,12 @@ bool processFrame(RunState& s, Channel& ch, const Frame& frame) {
   fillDetectionPacket(ch.detections, stamp, ch.packet);
   s.outputs.detection(ch.packet);
 
+  const unsigned color_changes = ch.colors.update(ch.processor->detector().health());
+  if (color_changes || ch.colors.castChanged())
+    ch.colors.sayChanges(color_changes, [&](bool warning, const std::string& text) {
+      std::fprintf(warning ? stderr : stdout, "dotvision run: %scamera %u: %s\n", warning ? "warning: " : "",
+                   ch.calibration.camera_id, text.c_str());
+    });
   ++ch.processed;
   ch.robots += static_cast<long>(ch.detections.robots.size());
   ch.balls += static_cast<long>(ch.detections.balls.size());
@@ -208,6 +216,10 @@ void printSummary(const RunState& s, const std::string& what, const std::vector<
               robots * per, balls, balls * per);
   if (processed > 0 && robots == 0 && balls == 0)
     std::printf("  nothing was detected: check --bayer, the geometry and --camera-id\n");
+  for (const Channel& c : channels) {
+    const std::string colors = c.colors.summary();
+    if (!colors.empty()) std::printf("  colors, camera %u: %s\n", c.calibration.camera_id, colors.c_str());
+  }
   if (!total.empty()) {
     std::printf("  time per frame: pipeline median %.2f ms, detection median %.2f ms, "
                 "total median %.2f ms, p99 %.2f ms\n",

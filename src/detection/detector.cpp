@@ -81,6 +81,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     ball_tracks.clear();
   }
   plane_height = list.plane_height;
+  health = {};
   // White is what the lines show in this frame, never a fixed color.
   neutral = list.neutral;
   min_saturation = list.min_saturation;
@@ -138,6 +139,11 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
               if (a.confidence != b.confidence) return a.confidence > b.confidence;
               return a.position.x < b.position.x;
             });
+  for (const auto& r : out.robots) ++(r.team == Team::Yellow ? health.yellow : health.blue);
+  health.balls = static_cast<int>(out.balls.size());
+  health.yellow_blue = colorDistance(classes[kYellow].color, classes[kBlue].color);
+  health.green_pink = colorDistance(classes[kGreen].color, classes[kPink].color);
+  health.lines = neutral;
   last_t = t;
   have_frame = true;
 }
@@ -187,6 +193,8 @@ Detector::Detector(Detector&&) noexcept = default;
 Detector& Detector::operator=(Detector&&) noexcept = default;
 
 void Detector::reset() { impl_->reset(); }
+
+const DetectionHealth& Detector::health() const { return impl_->health; }
 
 Detector::ColorSeparations Detector::colorSeparations() const {
   const auto& c = impl_->classes;

@@ -158,6 +158,18 @@ struct DetectorOptions {
 // a robot height at or above the camera, ...).
 void validateDetectorOptions(const DetectorOptions& opt, const CameraModel& camera);
 
+// What one frame says about the detector's color classes (for the warnings
+// of color_health.h, the status and the console). Facts of this frame only.
+struct DetectionHealth {
+  int yellow = 0, blue = 0, balls = 0;  // reported
+  int center_blobs = 0;  // robot centers the team clustering saw
+  int side_blobs = 0;    // side blobs the green/pink clustering saw
+  // Whether the clustering found two clusters (false with too few samples).
+  bool teams_separated = false, sides_separated = false;
+  float yellow_blue = 0, green_pink = 0;  // class distances (ColorSeparations)
+  NeutralColor lines;  // the white lines' color: the camera's cast
+};
+
 class Detector {
  public:
   // Validates the options (see validateDetectorOptions).
@@ -180,6 +192,8 @@ class Detector {
                const FrameView& frame = {});
 
   const DetectorOptions& options() const { return opt_; }
+  // The last processed frame's health record.
+  const DetectionHealth& health() const;
 
   // Distances between the learned class colors (chromaticity, 0..300 scale
   // of color_classes.h) of the pairs the detector must tell apart; for the

@@ -83,6 +83,8 @@ void Detector::Impl::classifyRobots() {
   // Teams: center blobs, yellow vs blue; green and pink are external.
   {
     const auto res = clusterCenters();
+    health.center_blobs = nr;
+    health.teams_separated = res.separated;
     for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
   }
@@ -99,6 +101,8 @@ void Detector::Impl::classifyRobots() {
     const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
     auto res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
     orderByRatio(res, 0, 1);  // red over green: pink's far above green's
+    health.side_blobs = static_cast<int>(samples.size());
+    health.sides_separated = res.separated;
     // This frame's side colors seed the per-robot clustering.
     const ColorVec green = res.count[0] > 0 ? res.mean[0] : classes[kGreen].color;
     const ColorVec pink = res.count[1] > 0 ? res.mean[1] : classes[kPink].color;

@@ -179,6 +179,7 @@ struct Detector::Impl {
   float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
   NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
   float min_saturation = 0;
+  DetectionHealth health;             // of the last frame
   ColorMap color_map;                 // references -> this camera's colors
 
   std::vector<FrameBlob> blobs;
