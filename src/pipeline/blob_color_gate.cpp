@@ -3,15 +3,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/bayer_full.h"
 #include "pipeline/score_windows.h"
 
 namespace dv {
 namespace {
 
 constexpr double kLineStepMm = 25;      // between line samples
-constexpr int kMaxLinePoints = 600;     // evenly thinned beyond
+constexpr int kMaxLinePoints = 300;     // evenly thinned beyond
 constexpr double kImageMarginPx = 3;
-constexpr int kSiteReach = 2;  // px around a line sample searched for each channel's site
+constexpr int kSiteReach = 2;
+constexpr double kCarpetOffsetMm = 80;  // beside a line, for its contrast
+// White lines are this much brighter than the carpet beside them (white on
+// the lightest green carpet: 1.9; a line 2 px wide reads about 0.85 of its
+// white). Less: no lines in these places (a painted test scene, a field
+// other than the geometry), so no white balance is read.
+constexpr float kMinLineContrast = 1.4f;  // px around a line sample searched for each channel's site
 // Line samples on the lines' center: the brightest share of them (a sample
 // beside the center, under a robot or in shadow reads darker).
 constexpr double kBrightShare = 0.25;
@@ -25,35 +32,66 @@ constexpr double kScaleQuantile = 0.9;
 constexpr float kScaleShare = 0.3f;
 constexpr int kMaxPeaksForScale = 2048;
 
+// The co-sited color of the 2x2 cell under image position p.
+void pixelRgb(const cv::Mat& raw, BayerPattern bayer, const ImagePx& p, float rgb[3]) {
+  const int u = std::clamp(static_cast<int>(std::lround(p.u)), 0, raw.cols - 1);
+  const int v = std::clamp(static_cast<int>(std::lround(p.v)), 0, raw.rows - 1);
+  if (bayer == BayerPattern::None || raw.type() == CV_8UC3) {
+    const cv::Vec3b q = raw.at<cv::Vec3b>(v, u);
+    rgb[0] = q[2], rgb[1] = q[1], rgb[2] = q[0];
+  } else {
+    fullBayerRgbAt(raw, bayer, u, v, rgb);
+  }
+}
+
 }  // namespace
 
 BlobColorGate::BlobColorGate(const CameraModel& camera, const FieldModel& field) {
   const int w = camera.calibration().image_width, h = camera.calibration().image_height;
-  auto add = [&](double x, double y) {
-    const auto px = camera.fieldToImage({x, y, 0});
-    if (!px || px->u < kImageMarginPx || px->v < kImageMarginPx || px->u > w - 1 - kImageMarginPx ||
-        px->v > h - 1 - kImageMarginPx)
-      return;
-    points_.push_back(*px);
+  auto inImage = [&](double x, double y, ImagePx& px) {
+    const auto p = camera.fieldToImage({x, y, 0});
+    if (!p || p->u < kImageMarginPx || p->v < kImageMarginPx || p->u > w - 1 - kImageMarginPx ||
+        p->v > h - 1 - kImageMarginPx)
+      return false;
+    px = *p;
+    return true;
   };
+  // A line point and the carpet beside it (nx, ny: unit normal).
+  auto add = [&](double x, double y, double nx, double ny) {
+    ImagePx line, carpet;
+    if (inImage(x, y, line) && inImage(x + kCarpetOffsetMm * nx, y + kCarpetOffsetMm * ny, carpet)) {
+      points_.push_back(line);
+      carpet_.push_back(carpet);
+    }
+  };
+  int side = 1;  // alternate sides, so that no line's one side decides
   for (const FieldLine& l : field.lines) {
     const double len = std::hypot(l.p2.x - l.p1.x, l.p2.y - l.p1.y);
+    if (len <= 0) continue;
+    const double nx = -(l.p2.y - l.p1.y) / len, ny = (l.p2.x - l.p1.x) / len;
     const int n = std::max(1, static_cast<int>(len / kLineStepMm));
-    for (int i = 0; i <= n; ++i) add(l.p1.x + (l.p2.x - l.p1.x) * i / n, l.p1.y + (l.p2.y - l.p1.y) * i / n);
+    for (int i = 0; i <= n; ++i, side = -side)
+      add(l.p1.x + (l.p2.x - l.p1.x) * i / n, l.p1.y + (l.p2.y - l.p1.y) * i / n, side * nx, side * ny);
   }
   for (const FieldArc& a : field.arcs) {
     double span = a.a2 - a.a1;
     if (span <= 0) span += 2 * kPi;
     const int n = std::max(1, static_cast<int>(span * a.radius / kLineStepMm));
-    for (int i = 0; i <= n; ++i) {
+    for (int i = 0; i <= n; ++i, side = -side) {
       const double t = a.a1 + span * i / n;
-      add(a.center.x + a.radius * std::cos(t), a.center.y + a.radius * std::sin(t));
+      add(a.center.x + a.radius * std::cos(t), a.center.y + a.radius * std::sin(t), side * std::cos(t),
+          side * std::sin(t));
     }
   }
   if (static_cast<int>(points_.size()) > kMaxLinePoints) {
-    std::vector<ImagePx> thin;
-    for (int i = 0; i < kMaxLinePoints; ++i) thin.push_back(points_[points_.size() * i / kMaxLinePoints]);
+    std::vector<ImagePx> thin, thin_carpet;
+    for (int i = 0; i < kMaxLinePoints; ++i) {
+      const size_t k = points_.size() * i / kMaxLinePoints;
+      thin.push_back(points_[k]);
+      thin_carpet.push_back(carpet_[k]);
+    }
     points_.swap(thin);
+    carpet_.swap(thin_carpet);
   }
   bright_.resize(points_.size());
   order_.resize(points_.size());
@@ -64,6 +102,7 @@ BlobColorGate::BlobColorGate(const CameraModel& camera, const FieldModel& field)
 
 void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
   neutral_ = {};
+  line_saturation_ = 0;
   gain_[0] = gain_[1] = gain_[2] = 1;
   const int n = static_cast<int>(points_.size());
   if (n == 0 || raw.empty()) return;
@@ -108,12 +147,28 @@ void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
   }
   const float lo = std::min({neutral_.rgb[0], neutral_.rgb[1], neutral_.rgb[2]});
   if (lo < 1) return;  // a channel missing: no white balance can be read
+  // The carpet beside the lines, per channel the median.
+  for (int i = 0; i < n; ++i) pixelRgb(raw, bayer, carpet_[i], &rgb_[3 * i]);
+  float carpet[3];
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < n; ++i) order_[i] = rgb_[3 * i + k];
+    std::nth_element(order_.begin(), order_.begin() + n / 2, order_.begin() + n);
+    carpet[k] = order_[n / 2];
+  }
+  if (neutral_.rgb[0] + neutral_.rgb[1] + neutral_.rgb[2] < kMinLineContrast * (carpet[0] + carpet[1] + carpet[2]))
+    return;
   neutral_.valid = true;
   for (int k = 0; k < 3; ++k) gain_[k] = neutral_.rgb[1] / neutral_.rgb[k];
+  // What a line crossing's blob shows: line and carpet, half and half (a
+  // crossing's disc holds more line, so less saturation).
+  float mix[3];
+  for (int k = 0; k < 3; ++k) mix[k] = 0.5f * (neutral_.rgb[k] + carpet[k]);
+  line_saturation_ = saturation(mix);
 }
 
 void BlobColorGate::adoptNeutral(const BlobColorGate& other) {
   neutral_ = other.neutral_;
+  line_saturation_ = other.line_saturation_;
   for (int k = 0; k < 3; ++k) gain_[k] = other.gain_[k];
 }
 
@@ -128,12 +183,13 @@ void BlobColorGate::addPeak(const float rgb[3]) {
 }
 
 void BlobColorGate::endPeaks() {
+  // Without the lines the frame's neutral is unknown: the fixed gate.
   threshold_ = kMinBlobSaturation;
   const int n = static_cast<int>(peak_saturation_.size());
-  if (n == 0) return;
+  if (n == 0 || !neutral_.valid) return;
   const int q = std::min(n - 1, static_cast<int>(kScaleQuantile * n));
   std::nth_element(peak_saturation_.begin(), peak_saturation_.begin() + q, peak_saturation_.end());
-  threshold_ = std::min(kMinBlobSaturation, kScaleShare * peak_saturation_[q]);
+  threshold_ = std::min(kMinBlobSaturation, std::max(line_saturation_, kScaleShare * peak_saturation_[q]));
 }
 
 }  // namespace dv

@@ -10,7 +10,10 @@
 //    white balance should remove: reported to the operator);
 //  - the saturation needed scales with the frame's own: a share of what its
 //    most colored peaks show (a desaturating camera or gamma lowers every
-//    saturation alike), never more than kMinBlobSaturation.
+//    saturation alike), never less than a line crossing would show (line
+//    and carpet as read beside the lines) nor more than kMinBlobSaturation.
+//    A frame whose lines are not where the geometry puts them keeps the
+//    fixed kMinBlobSaturation.
 // Both backends judge their peaks with it. No allocation after construction.
 #include <opencv2/core.hpp>
 #include <vector>
@@ -48,6 +51,7 @@ class BlobColorGate {
 
  private:
   std::vector<ImagePx> points_;  // image px of line samples
+  std::vector<ImagePx> carpet_;  // image px of the carpet beside each
   std::vector<float> bright_;    // per sample: r + g + b (reused)
   std::vector<float> rgb_;       // per sample (reused)
   std::vector<float> order_;     // brightness copy for the quantile (reused)
@@ -55,6 +59,7 @@ class BlobColorGate {
   NeutralColor neutral_;
   float gain_[3] = {1, 1, 1};
   float threshold_ = 0;
+  float line_saturation_ = 0;  // of a line-carpet mix: what a crossing shows
 };
 
 }  // namespace dv
