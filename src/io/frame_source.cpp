@@ -13,6 +13,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/error.h"
+#include "io/image_header.h"
 
 namespace dv {
 
@@ -180,6 +181,13 @@ bool ImageSequenceSource::next(Frame& f) {
     }
     if (std::string why = truncationReason(file_bytes_, size); !why.empty()) {
       recordSkip(path, why);
+      continue;
+    }
+    if (const auto claimed = claimedImageSize(file_bytes_.data(), size);
+        claimed && tooManyPixels(*claimed)) {
+      recordSkip(path, "the header claims " + std::to_string(claimed->width) + "x" +
+                           std::to_string(claimed->height) + " pixels, above the limit of " +
+                           std::to_string(kMaxImagePixels >> 20) + " Mpx");
       continue;
     }
     const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, file_bytes_.data());
