@@ -145,7 +145,11 @@ void SslLogWriter::close() {
   if (!file_) return;
   gzFile f = asGz(file_);
   file_ = nullptr;
+  errno = 0;
   int rc = gzclose(f);
+  if (rc == Z_ERRNO && errno != 0) {  // the final flush: a full disk, an I/O error
+    throw InputError(path_, at(offset_) + "write failed at close: " + std::strerror(errno));
+  }
   if (rc != Z_OK) {
     throw InputError(path_, "closing failed (zlib error " + std::to_string(rc) + ")");
   }
