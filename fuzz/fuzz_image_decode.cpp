@@ -1,5 +1,6 @@
 // Still images as the frame sources read them (src/io/frame_source.cpp):
-// the truncation and chunk checks, then OpenCV's decoders (PNG, JPEG, PGM).
+// the format, size, truncation and chunk checks, then OpenCV's decoders
+// (PNG, JPEG, PNM, BMP, TIFF).
 // The first byte picks the file name's extension.
 #include <opencv2/core/utils/logger.hpp>
 
@@ -19,8 +20,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  static const char* kNames[] = {"f.png", "f.jpg", "f.pgm", "f.ppm", "f.bmp"};
-  const std::string path = dv::fuzz::inputFile(data + 1, size - 1, kNames[data[0] % 5]);
+  static const char* kNames[] = {"f.png", "f.jpg", "f.pgm", "f.ppm", "f.bmp", "f.tif"};
+  const std::string path = dv::fuzz::inputFile(data + 1, size - 1, kNames[data[0] % 6]);
   dv::fuzz::expectOnlyInputErrors([&] {
     auto source = dv::openFrameSource(path, {});
     dv::Frame f;

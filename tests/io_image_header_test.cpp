@@ -108,5 +108,33 @@ TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
   }
 }
 
+
+// Found by fuzz_image_decode: a file with the DICOM marker at byte 128 made
+// OpenCV hand it to its DICOM reader, which aborted the whole process on
+// the damaged data. Only the formats the sources take reach a decoder.
+TEST_F(ImageHeaderSourceTest, OtherFormatsAndDicomNeverReachADecoder) {
+  static const char kCrash[] =
+      "\x50\x34\x23\x35\x32\x31\x36\x20\xff\xff\x5f\x30\x00\x3c\x18\xa3\x01\x31\x00\x4d\x7e\x4c\x00\x00"
+      "\x00\x00\x30\x20\x32\x34\xe8\x1d\xfe\x00\x59\xa6\x6a\x95\x27\x1d\xff\xd8\xd8\xd8\x00\x00\x00\x00"
+      "\x00\x18\xa3\x01\x30\x00\xff\x01\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00"
+      "\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49"
+      "\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e"
+      "\x8e\x8e\x8e\x8e\x8e\x8e\xff\xff\x44\x49\x43\x4d\x00";
+  const auto* b = reinterpret_cast<const unsigned char*>(kCrash);
+  write("a_0.pgm", std::vector<unsigned char>(b, b + sizeof kCrash - 1));
+  const std::string webp = "RIFF\x24\0\0\0WEBPVP8 " + std::string(40, 'x');
+  write("a_1.png", std::vector<unsigned char>(webp.begin(), webp.end()));
+  write("a_2.tif", encoded(".tiff", 8, 8, 3));
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  std::vector<uint32_t> delivered;
+  while (src->next(f)) delivered.push_back(f.index);
+  EXPECT_EQ(delivered, std::vector<uint32_t>{2});  // the TIFF
+  ASSERT_EQ(src->skipped().size(), 2u);
+  for (const auto& skip : src->skipped())
+    EXPECT_NE(skip.reason.find("not a PNG, JPEG, PNM, BMP or TIFF image"), std::string::npos) << skip.reason;
+  EXPECT_STREQ(acceptedImageFormat(b, sizeof kCrash - 1), nullptr);
+}
+
 }  // namespace
 }  // namespace dv

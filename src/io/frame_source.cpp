@@ -183,6 +183,10 @@ bool ImageSequenceSource::next(Frame& f) {
       recordSkip(path, why);
       continue;
     }
+    if (!acceptedImageFormat(file_bytes_.data(), size)) {
+      recordSkip(path, "not a PNG, JPEG, PNM, BMP or TIFF image (by its first bytes)");
+      continue;
+    }
     if (const auto claimed = claimedImageSize(file_bytes_.data(), size);
         claimed && tooManyPixels(*claimed)) {
       recordSkip(path, "the header claims " + std::to_string(claimed->width) + "x" +

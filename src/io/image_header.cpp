@@ -67,6 +67,17 @@ std::optional<ImageSize> jpegSize(const unsigned char* b, size_t size) {
 
 }  // namespace
 
+const char* acceptedImageFormat(const unsigned char* b, size_t size) {
+  if (size >= 132 && std::memcmp(b + 128, "DICM", 4) == 0) return nullptr;
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size >= 8 && std::memcmp(b, kPng, 8) == 0) return "PNG";
+  if (size >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff) return "JPEG";
+  if (size >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '6' && std::isspace(b[2])) return "PNM";
+  if (size >= 2 && b[0] == 'B' && b[1] == 'M') return "BMP";
+  if (size >= 4 && (std::memcmp(b, "II*\0", 4) == 0 || std::memcmp(b, "MM\0*", 4) == 0)) return "TIFF";
+  return nullptr;
+}
+
 std::optional<ImageSize> claimedImageSize(const unsigned char* b, size_t size) {
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (size >= 24 && std::memcmp(b, kPng, 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {

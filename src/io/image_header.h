@@ -22,6 +22,12 @@ inline bool tooManyPixels(const ImageSize& s) {
   return s.width > 0 && s.height > kMaxImagePixels / s.width;
 }
 
+// The format the first bytes show, of those the frame sources take: "PNG",
+// "JPEG", "PNM" (P1..P6), "BMP", "TIFF"; nullptr for any other, and for a
+// file carrying the DICOM marker at byte 128 (OpenCV picks its decoder by
+// content, and its DICOM reader aborts the process on a damaged file).
+const char* acceptedImageFormat(const unsigned char* bytes, size_t size);
+
 // The size in a PNG, JPEG, PGM/PPM/PBM or BMP header; nullopt when the
 // format is another or the header is too damaged to name one (the decoder
 // then decides).
