@@ -161,10 +161,16 @@ bool writeLineChart(const std::string& path, const std::string& title, const std
       run.emplace_back(int(std::lround(p.x)), int(std::lround(p.y)));
     }
     flush();
-    // Legend: top left inside the plot, one line per series.
+  }
+  // Legend: top left inside the plot on a white box, one line per series.
+  int widest = 0, base = 0;
+  for (const Series& s : series) widest = std::max(widest, cv::getTextSize(s.name, kFont, kTextScale, 1, &base).width);
+  cv::rectangle(img, cv::Rect(f.area.x + 4, f.area.y + 4, widest + 42, 18 * int(series.size()) + 8), kWhite,
+                cv::FILLED);
+  for (size_t k = 0; k < series.size(); ++k) {
     const cv::Point at(f.area.x + 10, f.area.y + 18 + 18 * int(k));
-    cv::line(img, at + cv::Point(0, -4), at + cv::Point(22, -4), color, 3, cv::LINE_AA);
-    text(img, s.name, at + cv::Point(28, 0));
+    cv::line(img, at + cv::Point(0, -4), at + cv::Point(22, -4), kPalette[k % std::size(kPalette)], 3, cv::LINE_AA);
+    text(img, series[k].name, at + cv::Point(28, 0));
   }
   return save(path, img, why);
 }
