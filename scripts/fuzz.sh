@@ -31,7 +31,8 @@ if [ "$target" = all ]; then
     xargs -P "$jobs" -I{} sh -c 'DV_FUZZ_BUILT=1 scripts/fuzz.sh {} '"$seconds"' "$@" >"'"$dir"'/fuzz/logs/{}.log" 2>&1 || echo "FAILED {}"' sh "$@" \
     > "$dir/fuzz/logs/failed.txt" || true
   for t in $targets; do
-    last=$(grep -E '^#[0-9]+' "$dir/fuzz/logs/$t.log" | tail -1 | cut -d' ' -f1-4)
+    last=$(grep -E '^#[0-9]+' "$dir/fuzz/logs/$t.log" | tail -1 |
+      sed -E 's/^#([0-9]+)[[:space:]]+[A-Z]+[[:space:]]+cov: ([0-9]+) ft: ([0-9]+).*/\1 runs, cov \2, ft \3/')
     printf '%-20s %s\n' "$t" "${last:-no run}"
   done
   if [ -s "$dir/fuzz/logs/failed.txt" ]; then
