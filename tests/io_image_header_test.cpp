@@ -136,5 +136,28 @@ TEST_F(ImageHeaderSourceTest, OtherFormatsAndDicomNeverReachADecoder) {
   EXPECT_STREQ(acceptedImageFormat(b, sizeof kCrash - 1), nullptr);
 }
 
+
+// A damaged header in a format the sources take: skipped with the project's
+// reason, and OpenCV's own "imdecode_(...): can't read header" line (which
+// its decoders write to std::cerr themselves) is not printed.
+TEST_F(ImageHeaderSourceTest, DamagedHeaderIsSkippedWithoutTheDecodersOwnLines) {
+  const std::string pgm = "P5\n8 x\n255\n" + std::string(64, 'x');
+  write("a_0.pgm", std::vector<unsigned char>(pgm.begin(), pgm.end()));
+  auto bmp = encoded(".bmp", 8, 8, 3);
+  for (int i = 2; i < 6; ++i) bmp[size_t(i)] = 0;  // the file size field
+  for (int i = 10; i < 14; ++i) bmp[size_t(i)] = 0xff;  // the pixel offset
+  write("a_1.bmp", bmp);
+  write("a_2.png", encoded(".png", 8, 8, 3));
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  int n = 0;
+  ::testing::internal::CaptureStderr();
+  while (src->next(f)) ++n;
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(n, 1);
+  EXPECT_EQ(printed, "");
+  EXPECT_EQ(src->skipped().size(), 2u);
+}
+
 }  // namespace
 }  // namespace dv
