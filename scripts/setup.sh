@@ -15,7 +15,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libaravis-dev libusb-1.0-0-dev aravis-tools ffmpeg  # aravis-0.8.pc requires libusb-1.0.pc
   chromium chromium-driver  # the console's browser tests (headless)
-  clang-14 libclang-rt-14-dev  # the fuzz targets (scripts/fuzz.sh, fuzz/)
+  clang-14 libclang-rt-14-dev  # the fuzz targets and the sanitizer build (scripts/fuzz.sh, sanitize.sh)
+  jq curl  # scripts/soak.sh
 )
 
 missing=()

@@ -107,6 +107,22 @@ TEST_F(CliRun, BayerSamplingIsChosenLoggedAndOverridable) {
   EXPECT_NE(bad.err.find("--bayer-sampling 'half'"), std::string::npos) << bad.err;
 }
 
+// A full disk under the recording: one warning naming the file, every frame
+// still detected (JSONL), and the summary and exit status (1) say so.
+TEST_F(CliRun, FullDiskStopsRecordingButNotDetection) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const CliResult r = cli("run --source " + scene_dir_.string() + " --geometry " + scene("geometry.json") +
+                          " --camera-id 0 --jsonl " + path("det.jsonl") + " --record /dev/full --no-publish");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("3 processed, 0 skipped"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("recording stopped: /dev/full"), std::string::npos) << r.out;
+  const size_t warning = r.err.find("warning: recording stopped: /dev/full");
+  ASSERT_NE(warning, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("No space left on device", warning), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("recording stopped", warning + 30), std::string::npos) << "warned twice: " << r.err;
+  EXPECT_EQ(lines(readAll(path("det.jsonl"))).size(), 3u);
+}
+
 TEST_F(CliRun, ProcessesAnImageSequenceAndWritesJsonlAndLog) {
   // The directory `synth` wrote, as the README shows it.
   const CliResult r = cli("run --source " + scene_dir_.string() + " --geometry " + scene("geometry.json") +

@@ -278,6 +278,30 @@ TEST_F(EvalFiles, GarbageLogRecordIsAnInputErrorWithOffset) {
   }
 }
 
+// A packet missing required fields (found fuzzing): named in the error, and
+// protobuf prints no line of its own before it.
+TEST_F(EvalFiles, LogPacketMissingRequiredFieldsIsNamedQuietly) {
+  {
+    SslLogWriter w(path("partial.log"));
+    ssl::SSL_WrapperPacket p;
+    *p.mutable_detection() = frame(0, 1);
+    p.mutable_detection()->add_robots_yellow()->set_confidence(1);
+    w.write(1, LogMessageType::Vision2014, p.SerializePartialAsString());
+  }
+  ::testing::internal::CaptureStderr();
+  try {
+    readDetectionFile(path("partial.log"));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path("partial.log")), std::string::npos) << what;
+    EXPECT_NE(what.find("byte 16"), std::string::npos) << what;
+    EXPECT_NE(what.find("lacks required fields"), std::string::npos) << what;
+    EXPECT_NE(what.find("robots_yellow[0].x"), std::string::npos) << what;
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST_F(EvalFiles, DamagedLogHeaderIsReportedAsSuch) {
   {
     SslLogWriter w(path("damaged.log"));

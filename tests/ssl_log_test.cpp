@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -195,6 +196,29 @@ TEST(SslLog, NoIndexAndInconsistentIndex) {
   expectInputError([&] { readSslLogIndex(bad); }, {bad, "back-pointer 9999"});
 }
 
+// Found by fuzz_ssl_log: the stored back-pointer and offsets are any 64 bits;
+// the extremes are refused by name instead of overflowing the arithmetic
+// (UBSan in the fuzz and sanitizer builds stops on that).
+TEST(SslLog, IndexWithExtremeValuesIsRefused) {
+  const auto negative = tempPath("negative_back.log");
+  std::string bytes = fileHeader() + recordBytes(1, 4, "abc");
+  appendBigEndian(bytes, uint64_t(INT64_MIN) + 47, 8);
+  bytes += "INDEXED";
+  writeFile(negative, bytes);
+  expectInputError([&] { readSslLogIndex(negative); }, {negative, "back-pointer -9223372036854775761"});
+
+  const auto far = tempPath("far_entry.log");
+  bytes = fileHeader() + recordBytes(1, 4, "abc");
+  std::string index = recordBytes(0, 6, "");
+  index.resize(12);
+  appendBigEndian(index, 8 + 15, 4);
+  appendBigEndian(index, uint64_t(INT64_MAX), 8);
+  appendBigEndian(index, 16 + 8 + 15, 8);
+  index += "INDEXED";
+  writeFile(far, bytes + index);
+  expectInputError([&] { readSslLogIndex(far); }, {far, "index entry 0", "outside the records"});
+}
+
 TEST(SslLog, IndexRefusedForCompressedLog) {
   const auto path = tempPath("x.log.gz");
   SslLogWriter w(path);
@@ -321,6 +345,34 @@ TEST(SslLog, AbsurdSize) {
   bytes[35 + 12] = char(0x7f);  // about 2 GB
   writeFile(path, bytes);
   EXPECT_EQ(recordsBeforeError(path, {path, "byte 35", "implausible"}), 1);
+}
+
+// Records are single datagrams: a size above the 1 MiB limit is refused with
+// the file and the record's offset, before a buffer of that size exists.
+TEST(SslLog, SizeAboveTheLimitIsNamed) {
+  const auto path = tempPath("over_limit.log");
+  std::string bytes = fileHeader() + recordBytes(1, 4, "abc") + recordBytes(2, 4, "");
+  const uint32_t claimed = uint32_t(kSslLogMaxPayloadBytes) + 1;
+  for (int i = 0; i < 4; ++i) bytes[35 + 12 + i] = char(claimed >> (24 - 8 * i));
+  bytes += std::string(100, 'p');
+  writeFile(path, bytes);
+  EXPECT_EQ(recordsBeforeError(path, {path, "byte 35", "record size 1048577", "implausible",
+                                      "limit 1048576"}),
+            1);
+  SslLogWriter w(tempPath("over_limit_write.log"));
+  EXPECT_THROW(w.write(1, LogMessageType::Vision2014, std::string(size_t(claimed), 'x')), InputError);
+}
+
+// A size within the limit on a short file is a truncated payload, counted
+// in the bytes that are there.
+TEST(SslLog, LargeClaimOnShortFileIsTruncation) {
+  const auto path = tempPath("large_claim.log");
+  std::string bytes = fileHeader() + recordBytes(1, 4, "abc") + recordBytes(2, 4, "");
+  const uint32_t claimed = uint32_t(kSslLogMaxPayloadBytes);
+  for (int i = 0; i < 4; ++i) bytes[35 + 12 + i] = char(claimed >> (24 - 8 * i));
+  bytes += std::string(70000, 'p');
+  writeFile(path, bytes);
+  EXPECT_EQ(recordsBeforeError(path, {path, "byte 35", "truncated payload", "70000 of 1048576"}), 1);
 }
 
 }  // namespace

@@ -344,7 +344,7 @@ int runLive(const RunArgs& a, const CameraCalibration& calibration, const Geomet
                 percentile(t.detection_ms, 0.5));
   std::printf("  output: %s\n", outputs.describe().c_str());
   if (!runner.failure().empty()) return kExitBadInput;
-  return c.processed > 0 ? kExitOk : kExitFailure;
+  return c.processed > 0 && outputs.recordingFailure().empty() ? kExitOk : kExitFailure;
 }
 
 int runOnSource(const RunArgs& a) {
@@ -418,7 +418,7 @@ int runOnSource(const RunArgs& a) {
     std::fprintf(stderr, "dotvision run: %s: no frame could be processed\n", a.source.c_str());
     return kExitBadInput;
   }
-  return kExitOk;
+  return outputs.recordingFailure().empty() ? kExitOk : kExitFailure;
 }
 
 int runSynthetic(const RunArgs& a) {
@@ -468,7 +468,7 @@ int runSynthetic(const RunArgs& a) {
                    std::to_string(first.image_height) + (spec.bayer ? " Bayer" : " RGB") +
                    (stopRequested() ? " (stopped by a signal)" : ""),
                channels);
-  return kExitOk;
+  return outputs.recordingFailure().empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@ CommandFn addBenchCommand(CLI::App& root);
 CommandFn addGeometryCommand(CLI::App& root);
 CommandFn addServeCommand(CLI::App& root);
 CommandFn addCamerasCommand(CLI::App& root);
+CommandFn addPlotCommand(CLI::App& root);
 
 // Exit codes shared by all subcommands.
 constexpr int kExitOk = 0;

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add(addGeometryCommand);
   add(addServeCommand);
   add(addCamerasCommand);
+  add(addPlotCommand);
 
   try {
     root.parse(argc, argv);

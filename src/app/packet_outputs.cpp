@@ -42,7 +42,11 @@ PacketOutputs::PacketOutputs(const OutputOptions& o, const ssl::SSL_GeometryData
     ssl::SSL_WrapperPacket g;
     g.set_source(ssl::SSL_SOURCE_SSL_VISION);
     *g.mutable_geometry() = geometry;
-    log_->write(unixNs(), LogMessageType::Vision2014, g.SerializeAsString());
+    try {
+      log_->write(unixNs(), LogMessageType::Vision2014, g.SerializeAsString());
+    } catch (const InputError& e) {
+      stopRecording(e.what());
+    }
   }
   if (!o.jsonl.empty()) {
     jsonl_.open(o.jsonl, std::ios::trunc);
@@ -59,7 +63,11 @@ void PacketOutputs::detection(const ssl::SSL_WrapperPacket& packet) {
   }
   if (log_) {
     packet.SerializeToString(&buffer_);  // reuses the buffer's capacity
-    log_->write(unixNs(), LogMessageType::Vision2014, buffer_);
+    try {
+      log_->write(unixNs(), LogMessageType::Vision2014, buffer_);
+    } catch (const InputError& e) {
+      stopRecording(e.what());
+    }
   }
   if (jsonl_.is_open()) {
     jsonl_ << toCanonicalJson(packet) << '\n';
@@ -103,11 +111,24 @@ void PacketOutputs::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
   finished_ = true;
-  if (log_) log_->close();
+  if (log_) {
+    try {
+      log_->close();
+    } catch (const InputError& e) {
+      stopRecording(e.what());
+    }
+  }
   if (jsonl_.is_open()) {
     jsonl_.close();
     if (jsonl_.fail()) throw InputError(o_.jsonl, "write failed at close");
   }
+}
+
+void PacketOutputs::stopRecording(const std::string& why) {
+  std::fprintf(stderr, "%s: warning: recording stopped: %s; detection and publishing go on\n", o_.who.c_str(),
+               why.c_str());
+  record_failure_ = why;
+  log_.reset();  // closes what it can without throwing
 }
 
 std::string PacketOutputs::describe() const {
@@ -120,6 +141,7 @@ std::string PacketOutputs::describe() const {
   else
     out += "not published";
   if (log_) out += "; recorded " + o_.ssl_log;
+  if (!record_failure_.empty()) out += "; recording stopped: " + record_failure_;
   if (!o_.jsonl.empty()) out += "; JSONL " + o_.jsonl;
   return out;
 }

@@ -48,6 +48,10 @@ class PacketOutputs {
   void finish();
   std::string describe() const;
   uint64_t sendFailures() const { return send_failures_; }
+  // Why recording stopped ("" while it goes on or when there is none). A
+  // write that fails (disk full, I/O error) stops the SSL log with one
+  // warning naming the file; detection, publishing and JSONL go on.
+  const std::string& recordingFailure() const { return record_failure_; }
 
  private:
   OutputOptions o_;
@@ -56,6 +60,8 @@ class PacketOutputs {
   std::unique_ptr<SslLogWriter> log_;
   std::ofstream jsonl_;
   std::string buffer_;
+  void stopRecording(const std::string& why);  // with mutex_ held
+  std::string record_failure_;
   uint64_t send_failures_ = 0;
   uint64_t jsonl_lines_ = 0;
   bool finished_ = false;

@@ -83,9 +83,16 @@ DetectionFile readDetectionLog(const std::string& path) {
       break;
     }
     if (record.type != LogMessageType::Vision2014) continue;
-    if (!packet.ParseFromString(record.payload)) {
+    // Partial parse, then the check: protobuf's own parse would print its
+    // "libprotobuf ERROR" line before this message.
+    if (!packet.ParsePartialFromString(record.payload)) {
       throw InputError(path, "record at byte " + std::to_string(offset) +
                                  ": payload is not a valid SSL_WrapperPacket");
+    }
+    if (!packet.IsInitialized()) {
+      throw InputError(path, "record at byte " + std::to_string(offset) +
+                                 ": SSL_WrapperPacket lacks required fields (" +
+                                 packet.InitializationErrorString() + ")");
     }
     if (packet.has_detection()) out.frames.push_back(packet.detection());
   }

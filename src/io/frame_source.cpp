@@ -8,11 +8,14 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "core/error.h"
+#include "io/image_header.h"
 
 namespace dv {
 
@@ -72,6 +75,30 @@ std::string truncationReason(const std::vector<unsigned char>& bytes, size_t siz
   }
   return "";
 }
+
+// OpenCV's imdecode writes a damaged header's error to std::cerr itself
+// ("imdecode_(''): can't read header: ...") before returning an empty image,
+// which is then skipped with the project's reason. std::cerr is muted while
+// any thread decodes (counted: two cameras decoding at once restore it
+// once); the project writes to stderr through stdio and spdlog only.
+class MutedStdCerr {
+ public:
+  MutedStdCerr() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_++ == 0) saved_ = std::cerr.rdbuf(nullptr);
+  }
+  ~MutedStdCerr() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (--count_ == 0) std::cerr.rdbuf(saved_);  // rdbuf() also clears the stream's state
+  }
+  MutedStdCerr(const MutedStdCerr&) = delete;
+  MutedStdCerr& operator=(const MutedStdCerr&) = delete;
+
+ private:
+  static inline std::mutex mutex_;
+  static inline int count_ = 0;
+  static inline std::streambuf* saved_ = nullptr;
+};
 
 bool readFileInto(const std::string& path, std::vector<unsigned char>& buffer, size_t& size) {
   std::ifstream in(path, std::ios::binary);
@@ -182,11 +209,23 @@ bool ImageSequenceSource::next(Frame& f) {
       recordSkip(path, why);
       continue;
     }
+    if (!acceptedImageFormat(file_bytes_.data(), size)) {
+      recordSkip(path, "not a PNG, JPEG, PNM, BMP or TIFF image (by its first bytes)");
+      continue;
+    }
+    if (const auto claimed = claimedImageSize(file_bytes_.data(), size);
+        claimed && tooManyPixels(*claimed)) {
+      recordSkip(path, "the header claims " + std::to_string(claimed->width) + "x" +
+                           std::to_string(claimed->height) + " pixels, above the limit of " +
+                           std::to_string(kMaxImagePixels >> 20) + " Mpx");
+      continue;
+    }
     const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, file_bytes_.data());
     // A fresh Mat: on failure OpenCV leaves a passed-in target untouched,
     // which would hand out the previous image as this one.
     cv::Mat decoded;
     try {
+      const MutedStdCerr quiet;
       decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception& e) {
       recordSkip(path, std::string("cannot decode the image: ") + e.what());

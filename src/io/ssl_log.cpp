@@ -127,7 +127,7 @@ void SslLogWriter::writeIndex() {
   }
   const int64_t n = int64_t(record_offsets_.size());
   const int64_t payload_bytes = 8 * n + kIndexTailBytes;
-  if (payload_bytes > kSslLogMaxPayloadBytes) {
+  if (payload_bytes > kSslLogMaxIndexBytes) {
     throw InputError(path_, "too many records (" + std::to_string(n) + ") for one index");
   }
   std::string payload(size_t(payload_bytes), '\0');
@@ -145,7 +145,11 @@ void SslLogWriter::close() {
   if (!file_) return;
   gzFile f = asGz(file_);
   file_ = nullptr;
+  errno = 0;
   int rc = gzclose(f);
+  if (rc == Z_ERRNO && errno != 0) {  // the final flush: a full disk, an I/O error
+    throw InputError(path_, at(offset_) + "write failed at close: " + std::strerror(errno));
+  }
   if (rc != Z_OK) {
     throw InputError(path_, "closing failed (zlib error " + std::to_string(rc) + ")");
   }
@@ -283,9 +287,19 @@ bool SslLogReader::readRecord(LogRecord& out) {
     }
     out.timestamp_ns = timestamp;
     out.type = LogMessageType(type);
-    out.payload.resize(size_t(size));
-    size_t payload_got = readBytes(out.payload.data(), size_t(size),
-                                   record_offset + kSslLogRecordHeaderBytes);
+    // The buffer grows with the bytes actually there, so a size field that
+    // promises more than the file holds costs no more than the file.
+    constexpr size_t kStep = 64 * 1024;
+    size_t payload_got = 0;
+    out.payload.clear();
+    while (payload_got < size_t(size)) {
+      const size_t want = std::min(size_t(size) - payload_got, kStep);
+      out.payload.resize(payload_got + want);
+      const size_t got = readBytes(out.payload.data() + payload_got, want,
+                                   record_offset + kSslLogRecordHeaderBytes + int64_t(payload_got));
+      payload_got += got;
+      if (got < want) break;
+    }
     if (payload_got < size_t(size)) {
       throw InputError(path_, at(record_offset) + "truncated payload: " +
                                   std::to_string(payload_got) + " of " + std::to_string(size) +
@@ -325,12 +339,14 @@ std::optional<std::vector<int64_t>> readSslLogIndex(const std::string& path) {
   }
   if (std::memcmp(tail + 8, kIndexMarker, kIndexMarkerBytes) != 0) return std::nullopt;
 
+  // Range-checked before any arithmetic: the stored value is any 64 bits.
   const int64_t back = int64_t(getBigEndian(tail, 8));
-  const int64_t index_start = file_size - back;
+  const bool back_fits =
+      back >= kSslLogRecordHeaderBytes + kIndexTailBytes && back <= file_size - kSslLogHeaderBytes;
+  const int64_t index_start = back_fits ? file_size - back : 0;
   const int64_t first_offset = index_start + kSslLogRecordHeaderBytes;
   const int64_t offsets_bytes = file_size - kIndexTailBytes - first_offset;
-  if (back < kSslLogRecordHeaderBytes + kIndexTailBytes || index_start < kSslLogHeaderBytes ||
-      offsets_bytes % 8 != 0) {
+  if (!back_fits || offsets_bytes % 8 != 0) {
     throw InputError(path, at(file_size - kIndexTailBytes) + "index back-pointer " +
                                std::to_string(back) + " does not fit a file of " +
                                std::to_string(file_size) + " bytes");
@@ -355,7 +371,7 @@ std::optional<std::vector<int64_t>> readSslLogIndex(const std::string& path) {
   int64_t previous = kSslLogHeaderBytes - 1;
   for (size_t i = 0; i < offsets.size(); ++i) {
     offsets[i] = int64_t(getBigEndian(raw.data() + 8 * i, 8));
-    if (offsets[i] <= previous || offsets[i] + kSslLogRecordHeaderBytes > index_start) {
+    if (offsets[i] <= previous || offsets[i] > index_start - kSslLogRecordHeaderBytes) {
       throw InputError(path, at(first_offset + int64_t(8 * i)) + "index entry " +
                                  std::to_string(i) + " points to byte " +
                                  std::to_string(offsets[i]) + ", outside the records");

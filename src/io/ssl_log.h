@@ -29,9 +29,12 @@ struct LogRecord {
 // Sizes that describe the format, shared by the writer, reader and tests.
 inline constexpr int kSslLogHeaderBytes = 16;
 inline constexpr int kSslLogRecordHeaderBytes = 16;
-// Larger payloads are treated as corruption: a UDP datagram is below 64 KiB,
-// so a record claiming more than this is a damaged size field.
-inline constexpr int32_t kSslLogMaxPayloadBytes = 64 * 1024 * 1024;
+// Larger payloads are treated as corruption: every record the league logs is
+// one UDP datagram (below 64 KiB), so a record claiming more than 1 MiB is a
+// damaged size field, refused before anything is allocated for it.
+inline constexpr int32_t kSslLogMaxPayloadBytes = 1024 * 1024;
+// The index record lists 8 bytes per record; readers skip it unread.
+inline constexpr int32_t kSslLogMaxIndexBytes = 64 * 1024 * 1024;
 
 // True when `head`, a file's first bytes, is the SSL log header or close to
 // it (at least 8 of the 12 magic bytes in place): a damaged header is then

@@ -351,7 +351,11 @@ std::optional<Geometry> receiveGeometry(uint32_t camera_id, double timeout_s,
     const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
     if (left <= 0) return std::nullopt;
     if (!rx.receive(left, payload)) continue;  // timeout (ends at the top) or a failed read
-    if (!packet.ParseFromString(payload) || !packet.has_geometry()) continue;  // detections, noise
+    // Partial parse and the check: protobuf's own would print a line per
+    // noise packet that lacks required fields.
+    if (!packet.ParsePartialFromString(payload) || !packet.IsInitialized() || !packet.has_geometry()) {
+      continue;  // detections, noise
+    }
     const auto& data = packet.geometry();
     const auto it = std::find_if(data.calib().begin(), data.calib().end(),
                                  [&](const auto& c) { return c.camera_id() == camera_id; });

@@ -1,0 +1,96 @@
+#include "io/image_header.h"
+
+#include <cctype>
+#include <cstring>
+
+namespace dv {
+namespace {
+
+uint32_t bigEndian(const unsigned char* p, int n) {
+  uint32_t v = 0;
+  for (int i = 0; i < n; ++i) v = v << 8 | p[i];
+  return v;
+}
+
+int32_t littleEndian32(const unsigned char* p) {
+  return int32_t(uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24);
+}
+
+// PNM: "P1".."P6", then width and height as decimal text separated by
+// whitespace and '#' comments.
+std::optional<ImageSize> pnmSize(const unsigned char* b, size_t size) {
+  size_t at = 2;
+  int64_t values[2] = {0, 0};
+  for (int64_t& value : values) {
+    for (;;) {
+      while (at < size && std::isspace(b[at])) ++at;
+      if (at < size && b[at] == '#') {
+        while (at < size && b[at] != '\n' && b[at] != '\r') ++at;
+        continue;
+      }
+      break;
+    }
+    if (at >= size || !std::isdigit(b[at])) return std::nullopt;
+    while (at < size && std::isdigit(b[at])) {
+      value = value * 10 + (b[at++] - '0');
+      if (value > (int64_t(1) << 40)) return ImageSize{value, 1};  // absurd already
+    }
+  }
+  return ImageSize{values[0], values[1]};
+}
+
+// JPEG: the first start-of-frame marker (C0..CF but C4, C8, CC) holds
+// height and width; other segments are skipped by their length.
+std::optional<ImageSize> jpegSize(const unsigned char* b, size_t size) {
+  size_t at = 2;
+  while (at + 4 <= size) {
+    if (b[at] != 0xff) return std::nullopt;
+    const unsigned char marker = b[at + 1];
+    if (marker == 0xff) {  // fill byte
+      ++at;
+      continue;
+    }
+    if (marker == 0xd8 || marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) {
+      at += 2;  // markers without a length
+      continue;
+    }
+    const uint32_t length = bigEndian(b + at + 2, 2);
+    if (length < 2) return std::nullopt;
+    if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc) {
+      if (at + 9 > size) return std::nullopt;
+      return ImageSize{bigEndian(b + at + 7, 2), bigEndian(b + at + 5, 2)};
+    }
+    at += 2 + length;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+const char* acceptedImageFormat(const unsigned char* b, size_t size) {
+  if (size >= 132 && std::memcmp(b + 128, "DICM", 4) == 0) return nullptr;
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size >= 8 && std::memcmp(b, kPng, 8) == 0) return "PNG";
+  if (size >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff) return "JPEG";
+  if (size >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '6' && std::isspace(b[2])) return "PNM";
+  if (size >= 2 && b[0] == 'B' && b[1] == 'M') return "BMP";
+  if (size >= 4 && (std::memcmp(b, "II*\0", 4) == 0 || std::memcmp(b, "MM\0*", 4) == 0)) return "TIFF";
+  return nullptr;
+}
+
+std::optional<ImageSize> claimedImageSize(const unsigned char* b, size_t size) {
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size >= 24 && std::memcmp(b, kPng, 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {
+    return ImageSize{bigEndian(b + 16, 4), bigEndian(b + 20, 4)};
+  }
+  if (size >= 4 && b[0] == 0xff && b[1] == 0xd8) return jpegSize(b, size);
+  if (size >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '6') return pnmSize(b, size);
+  if (size >= 26 && b[0] == 'B' && b[1] == 'M') {
+    // A negative height is a top-down bitmap.
+    const int64_t w = littleEndian32(b + 18), h = littleEndian32(b + 22);
+    return ImageSize{w < 0 ? -w : w, h < 0 ? -h : h};
+  }
+  return std::nullopt;
+}
+
+}  // namespace dv

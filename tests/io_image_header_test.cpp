@@ -1,0 +1,163 @@
+// Image headers are read before decoding: the claimed size of every format
+// the frame sources take, and a frame claiming too many pixels skipped with
+// a reason instead of a decoder allocating them.
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/frame_source.h"
+#include "io/image_header.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<unsigned char> encoded(const std::string& ext, int w, int h, int channels) {
+  cv::Mat m(h, w, channels == 1 ? CV_8UC1 : CV_8UC3, cv::Scalar(40, 90, 200));
+  std::vector<unsigned char> bytes;
+  EXPECT_TRUE(cv::imencode(ext, m, bytes)) << ext;
+  return bytes;
+}
+
+TEST(ImageHeader, ReadsTheSizeOfEveryFormat) {
+  for (const char* ext : {".png", ".jpg", ".pgm", ".ppm", ".bmp"}) {
+    const int channels = std::string(ext) == ".pgm" ? 1 : 3;
+    const auto bytes = encoded(ext, 37, 21, channels);
+    const auto size = claimedImageSize(bytes.data(), bytes.size());
+    ASSERT_TRUE(size.has_value()) << ext;
+    EXPECT_EQ(size->width, 37) << ext;
+    EXPECT_EQ(size->height, 21) << ext;
+  }
+  const std::string text = "P5 # a comment\n# another\n 640\t480\n255\n";
+  const auto pgm = claimedImageSize(reinterpret_cast<const unsigned char*>(text.data()), text.size());
+  ASSERT_TRUE(pgm.has_value());
+  EXPECT_EQ(pgm->width, 640);
+  EXPECT_EQ(pgm->height, 480);
+  const std::string other = "GIF89a....";
+  EXPECT_FALSE(claimedImageSize(reinterpret_cast<const unsigned char*>(other.data()), other.size()));
+}
+
+TEST(ImageHeader, LimitDoesNotOverflow) {
+  EXPECT_FALSE(tooManyPixels({2448, 2048}));
+  EXPECT_FALSE(tooManyPixels({8192, 8192}));
+  EXPECT_TRUE(tooManyPixels({8193, 8192}));
+  EXPECT_TRUE(tooManyPixels({0xffffffffLL, 0xffffffffLL}));
+  EXPECT_TRUE(tooManyPixels({int64_t(1) << 40, int64_t(1) << 40}));
+  EXPECT_FALSE(tooManyPixels({0, 0xffffffffLL}));
+}
+
+class ImageHeaderSourceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dv_imghdr_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void write(const std::string& name, const std::vector<unsigned char>& bytes) const {
+    std::ofstream(dir_ / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                       std::streamsize(bytes.size()));
+  }
+  fs::path dir_;
+};
+
+void putBig32(unsigned char* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (24 - 8 * i));
+}
+
+// Each file claims 40000x40000 pixels (1.6 Gpx, about 4.8 GB decoded); the
+// valid frame after them is still delivered.
+TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
+  auto png = encoded(".png", 8, 8, 3);
+  putBig32(png.data() + 16, 40000);
+  putBig32(png.data() + 20, 40000);
+  putBig32(png.data() + 29, uint32_t(::crc32(0, png.data() + 12, 17)));  // IHDR's CRC stays valid
+  write("a_0.png", png);
+  const std::string pgm_text = "P5\n40000 40000\n255\n" + std::string(64, 'x');
+  write("a_1.pgm", std::vector<unsigned char>(pgm_text.begin(), pgm_text.end()));
+  auto bmp = encoded(".bmp", 8, 8, 3);
+  for (int i = 0; i < 4; ++i) bmp[18 + i] = bmp[22 + i] = static_cast<unsigned char>((40000 >> (8 * i)) & 0xff);
+  write("a_2.bmp", bmp);
+  auto jpg = encoded(".jpg", 8, 8, 3);
+  bool patched = false;
+  for (size_t i = 2; i + 9 < jpg.size() && !patched; ++i) {
+    if (jpg[i] == 0xff && jpg[i + 1] == 0xc0) {
+      jpg[i + 5] = jpg[i + 7] = 40000 >> 8;
+      jpg[i + 6] = jpg[i + 8] = 40000 & 0xff;
+      patched = true;
+    }
+  }
+  ASSERT_TRUE(patched);
+  write("a_3.jpg", jpg);
+  write("a_4.png", encoded(".png", 8, 8, 3));
+
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  std::vector<uint32_t> delivered;
+  while (src->next(f)) delivered.push_back(f.index);
+  EXPECT_EQ(delivered, std::vector<uint32_t>{4});
+  ASSERT_EQ(src->skipped().size(), 4u);
+  for (const auto& skip : src->skipped()) {
+    EXPECT_NE(skip.reason.find("claims 40000x40000 pixels"), std::string::npos) << skip.name << ": " << skip.reason;
+    EXPECT_NE(skip.reason.find("64 Mpx"), std::string::npos) << skip.reason;
+  }
+}
+
+
+// Found by fuzz_image_decode: a file with the DICOM marker at byte 128 made
+// OpenCV hand it to its DICOM reader, which aborted the whole process on
+// the damaged data. Only the formats the sources take reach a decoder.
+TEST_F(ImageHeaderSourceTest, OtherFormatsAndDicomNeverReachADecoder) {
+  static const char kCrash[] =
+      "\x50\x34\x23\x35\x32\x31\x36\x20\xff\xff\x5f\x30\x00\x3c\x18\xa3\x01\x31\x00\x4d\x7e\x4c\x00\x00"
+      "\x00\x00\x30\x20\x32\x34\xe8\x1d\xfe\x00\x59\xa6\x6a\x95\x27\x1d\xff\xd8\xd8\xd8\x00\x00\x00\x00"
+      "\x00\x18\xa3\x01\x30\x00\xff\x01\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00"
+      "\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49"
+      "\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x49\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e\x8e"
+      "\x8e\x8e\x8e\x8e\x8e\x8e\xff\xff\x44\x49\x43\x4d\x00";
+  const auto* b = reinterpret_cast<const unsigned char*>(kCrash);
+  write("a_0.pgm", std::vector<unsigned char>(b, b + sizeof kCrash - 1));
+  const std::string webp = "RIFF\x24\0\0\0WEBPVP8 " + std::string(40, 'x');
+  write("a_1.png", std::vector<unsigned char>(webp.begin(), webp.end()));
+  write("a_2.tif", encoded(".tiff", 8, 8, 3));
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  std::vector<uint32_t> delivered;
+  while (src->next(f)) delivered.push_back(f.index);
+  EXPECT_EQ(delivered, std::vector<uint32_t>{2});  // the TIFF
+  ASSERT_EQ(src->skipped().size(), 2u);
+  for (const auto& skip : src->skipped())
+    EXPECT_NE(skip.reason.find("not a PNG, JPEG, PNM, BMP or TIFF image"), std::string::npos) << skip.reason;
+  EXPECT_STREQ(acceptedImageFormat(b, sizeof kCrash - 1), nullptr);
+}
+
+
+// A damaged header in a format the sources take: skipped with the project's
+// reason, and OpenCV's own "imdecode_(...): can't read header" line (which
+// its decoders write to std::cerr themselves) is not printed.
+TEST_F(ImageHeaderSourceTest, DamagedHeaderIsSkippedWithoutTheDecodersOwnLines) {
+  const std::string pgm = "P5\n8 x\n255\n" + std::string(64, 'x');
+  write("a_0.pgm", std::vector<unsigned char>(pgm.begin(), pgm.end()));
+  auto bmp = encoded(".bmp", 8, 8, 3);
+  for (int i = 2; i < 6; ++i) bmp[size_t(i)] = 0;  // the file size field
+  for (int i = 10; i < 14; ++i) bmp[size_t(i)] = 0xff;  // the pixel offset
+  write("a_1.bmp", bmp);
+  write("a_2.png", encoded(".png", 8, 8, 3));
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  int n = 0;
+  ::testing::internal::CaptureStderr();
+  while (src->next(f)) ++n;
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(n, 1);
+  EXPECT_EQ(printed, "");
+  EXPECT_EQ(src->skipped().size(), 2u);
+}
+
+}  // namespace
+}  // namespace dv
