@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "../tests/pipeline_test_scene.h"
+#include "pipeline/blob_color_gate.h"
 #include "pipeline/cpu_pipeline.h"
 
 namespace dv {
@@ -75,6 +76,26 @@ BENCHMARK(BM_CpuPipelineBayer2448)
     ->Args({0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// What the blob color gate adds per frame (blob_color_gate.h): reading the
+// lines' color and the carpet beside them, then the saturation scale from
+// a frame's worth of strong peaks (about 120 here). One thread, as the
+// pipeline runs it.
+void BM_BlobColorGate2448(benchmark::State& state) {
+  const auto& f = fixture();
+  BlobColorGate gate(*f.camera, FieldModel::divisionB());
+  const float rgb[4][3] = {{230, 210, 40}, {40, 80, 200}, {60, 200, 80}, {240, 90, 180}};
+  for (auto _ : state) {
+    gate.measureNeutral(f.frame, BayerPattern::RGGB);
+    gate.beginPeaks();
+    for (int i = 0; i < 120; ++i) gate.addPeak(rgb[i % 4]);
+    gate.endPeaks();
+    benchmark::DoNotOptimize(gate.threshold());
+  }
+  state.counters["line_points"] = gate.linePoints();
+  state.counters["lines_valid"] = gate.neutral().valid;
+}
+BENCHMARK(BM_BlobColorGate2448)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace dv
