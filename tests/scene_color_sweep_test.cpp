@@ -68,24 +68,8 @@ const std::vector<Condition>& conditions() {
 
 class SceneColorSweep : public ::testing::TestWithParam<size_t> {};
 
-// Columns as scene_sweep_test.cpp's table.
-TEST_P(SceneColorSweep, BothTeamsEveryIdAndTheBallUnderAnyColors) {
-  const Condition& c = conditions()[GetParam()];
-  const int placements = fullRun() ? 4 : 1;
-  for (bool half : {true, false}) {
-    if (!half && !fullRun()) continue;
-    SceneScore s;
-    for (int k = 0; k < placements; ++k) test::score(conditionScene(c, k, half), 1, true, s);
-    printRow(c.name, half ? "1224x1024" : "2448x2048", s);
-    SCOPED_TRACE(std::string(c.name) + (half ? " 1224x1024" : " 2448x2048"));
-    EXPECT_GE(s.precision(), 0.98);
-    EXPECT_GE(s.detectableRecall(), 0.98);
-    EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
-    EXPECT_GE(s.ballRecall(), 0.99);
-    EXPECT_GE(s.ballPrecision(), 0.98);
-    EXPECT_GE(s.recall(), half ? 0.8 : 0.97);
-  }
-}
+// The same bars as scene_sweep_test.cpp (sweepCondition).
+TEST_P(SceneColorSweep, BothTeamsEveryIdAndTheBallUnderAnyColors) { sweepCondition(conditions()[GetParam()]); }
 
 INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0, conditions().size()),
                          [](const ::testing::TestParamInfo<size_t>& info) {

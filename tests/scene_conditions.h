@@ -96,6 +96,28 @@ inline void printRow(const char* name, const char* res, const SceneScore& s) {
               s.fullPatternIdAccuracy(), s.truth_balls, s.ballRecall(), s.ballPrecision());
 }
 
+// Scores a condition (one placement at 1224 x 1024; DV_SCENE_FULL=1: 4 at
+// both sizes), prints its table rows and holds it to the sweeps' bars.
+// Columns: robots, recall, precision, id accuracy, recall of robots whose
+// center and 4 side blobs reached the detector, id accuracy of robots with
+// all 4 side blobs, balls, ball recall, ball precision.
+inline void sweepCondition(const Condition& c) {
+  const int placements = fullRun() ? 4 : 1;
+  for (bool half : {true, false}) {
+    if (!half && !fullRun()) continue;
+    SceneScore s;
+    for (int k = 0; k < placements; ++k) score(conditionScene(c, k, half), 1, true, s);
+    printRow(c.name, half ? "1224x1024" : "2448x2048", s);
+    SCOPED_TRACE(std::string(c.name) + (half ? " 1224x1024" : " 2448x2048"));
+    EXPECT_GE(s.precision(), 0.98);
+    EXPECT_GE(s.detectableRecall(), 0.98);
+    EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
+    EXPECT_GE(s.ballRecall(), 0.99);
+    EXPECT_GE(s.ballPrecision(), 0.98);
+    EXPECT_GE(s.recall(), half ? 0.8 : 0.97);
+  }
+}
+
 // A gtest name for a condition: its name with every other character as '_'.
 inline std::string conditionTestName(std::string n) {
   for (char& ch : n)
