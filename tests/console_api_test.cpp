@@ -48,6 +48,11 @@ TEST_F(ConsoleApi, StatusCamerasDetectionsAndGeometry) {
         << c.dump();
     EXPECT_TRUE(c["latency"]["total"]["p99_ms"].is_number());
     EXPECT_TRUE(c["frames"]["dropped"].is_number());
+    // The white lines' color (the camera's cast) and no color warning: the
+    // scene shows both teams and the ball.
+    EXPECT_EQ(c["colors"]["issues"], "") << c.dump();
+    ASSERT_TRUE(c["colors"]["lines_rgb"].is_array()) << c.dump();
+    EXPECT_GT(c["colors"]["lines_rgb"][1].get<double>(), 150) << c.dump();
   }
   // The printed line says where the token is, not what it is.
   EXPECT_EQ(serve_->printedToken(), "");

@@ -131,6 +131,14 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
     colors_.sayChanges(color_changes, [&](bool warning, const std::string& text) {
       log_("camera " + std::to_string(calibration_.camera_id) + (warning ? ": warning: " : ": ") + text);
     });
+  if (color_changes) {
+    std::string issues;
+    for (int i = 0; i < kColorIssueCount; ++i)
+      if (colors_.active(static_cast<ColorIssue>(i)))
+        issues += (issues.empty() ? "" : "; ") + std::string(ColorHealthWatch::name(static_cast<ColorIssue>(i)));
+    std::lock_guard<std::mutex> lock(mutex_);
+    color_issues_ = issues;
+  }
   const double arrival = frame.t_arrival > 0 ? frame.t_arrival : t_taken;
   const double t_done = unixSeconds();
   for (const FrameHook& hook : hooks_) hook(frame, packet_);
@@ -157,6 +165,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   second_.balls += detections_.balls.size();
   for (const auto& r : detections_.robots) (r.team == Team::Yellow ? second_.yellow : second_.blue) += 1;
   separations_ = processor_->detector().colorSeparations();
+  lines_ = processor_->detector().health().lines;
 }
 
 CameraRunner::Times CameraRunner::times() const {
@@ -198,6 +207,9 @@ CameraStatus CameraRunner::status() {
     s.separation_orange_field = separations_.orange_field;
     s.robot_height_yellow = heights_[0];
     s.robot_height_blue = heights_[1];
+    s.color_issues = color_issues_;
+    s.lines_valid = lines_.valid;
+    for (int k = 0; k < 3; ++k) s.lines_rgb[k] = lines_.rgb[k];
   }
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -98,6 +98,8 @@ class CameraRunner {
   double last_status_t_ = 0;
   HealthMonitor health_;
   ColorHealthWatch colors_;  // processing thread only
+  std::string color_issues_;  // under mutex_: the color warnings in force
+  NeutralColor lines_;        // under mutex_: the lines' last color
   std::vector<double> scratch_;
 
   LiveCamera camera_;  // last: its threads use the members above

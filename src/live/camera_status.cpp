@@ -40,6 +40,9 @@ nlohmann::json toJson(const CameraStatus& s) {
       {"color_separation", {{"yellow_blue", s.separation_yellow_blue}, {"green_pink", s.separation_green_pink},
                             {"orange_field", s.separation_orange_field}}},
       {"robot_height_mm", {{"yellow", s.robot_height_yellow}, {"blue", s.robot_height_blue}}},
+      {"colors", {{"issues", s.color_issues},
+                  {"lines_rgb", s.lines_valid ? nlohmann::json::array({s.lines_rgb[0], s.lines_rgb[1], s.lines_rgb[2]})
+                                              : nlohmann::json()}}},
       {"health", healthName(s.health)},
       {"health_reason", s.health_reason},
   };

@@ -35,6 +35,11 @@ struct CameraStatus {
   double yellow_per_frame = 0, blue_per_frame = 0;
   double separation_yellow_blue = 0, separation_green_pink = 0, separation_orange_field = 0;
   double robot_height_yellow = 0, robot_height_blue = 0;  // mm in use
+  // The color warnings now in force (detection/color_health.h), joined by
+  // "; " ("" none), and the white lines' color last read (the cast).
+  std::string color_issues;
+  bool lines_valid = false;
+  float lines_rgb[3] = {0, 0, 0};
   Health health = Health::Ok;
   std::string health_reason;  // "" when ok
   bool health_changed = false;  // differs from the previous record's (logged once)
