@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "eval/detection_files.h"
+#include "eval/eval_plots.h"
 #include "eval/metrics.h"
 
 namespace dv::app {
@@ -19,6 +20,7 @@ struct EvalArgs {
   std::string truth;
   std::vector<std::string> detections;
   bool json = false;
+  std::string plot_dir;
   MatchOptions match;
 };
 
@@ -39,6 +41,9 @@ CommandFn addEvalCommand(CLI::App& root) {
                   "(as `run --record` writes); several files (e.g. one per camera) are merged")
       ->required();
   cmd->add_flag("--json", args->json, "print the report as one JSON object");
+  cmd->add_option("--plot", args->plot_dir,
+                  "also draw PNGs into this folder: position and orientation error histograms, and a field "
+                  "map of missed, misidentified and false robots and balls");
   cmd->add_option("--robot-radius", args->match.robot_radius_mm,
                   "robot match radius in mm (default 60)")
       ->check(CLI::PositiveNumber);
@@ -65,6 +70,9 @@ CommandFn addEvalCommand(CLI::App& root) {
     } else {
       std::printf("%s", formatReport(report).c_str());
     }
+    if (!args->plot_dir.empty())
+      for (const std::string& f : writeEvalPlots(args->plot_dir, report.overall))
+        std::fprintf(args->json ? stderr : stdout, "dotvision eval: wrote %s\n", f.c_str());
     return kExitOk;
   };
 }

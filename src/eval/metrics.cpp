@@ -83,12 +83,22 @@ void scoreTeam(const Robots& truth, const Robots* det, const MatchOptions& o, Me
       truth, d, o.robot_radius_mm, [](int, int) { return true; }, &det_to_truth);
   for (int i = 0; i < truth.size(); ++i) {
     const int j = team[i];
-    if (j < 0) continue;
+    if (j < 0) {
+      m.misses.push_back({Miss::RobotMissed, truth.Get(i).x(), truth.Get(i).y()});
+      continue;
+    }
     ++m.team_matched_robots;
-    if (same_id(i, j)) ++m.team_matched_correct_id;
+    if (same_id(i, j)) {
+      ++m.team_matched_correct_id;
+    } else {
+      m.misses.push_back({Miss::RobotWrongId, truth.Get(i).x(), truth.Get(i).y()});
+    }
   }
-  for (int v : det_to_truth)
-    if (v < 0) ++m.false_positive_robots;
+  for (size_t j = 0; j < det_to_truth.size(); ++j)
+    if (det_to_truth[j] < 0) {
+      ++m.false_positive_robots;
+      m.misses.push_back({Miss::FalseRobot, d.Get(static_cast<int>(j)).x(), d.Get(static_cast<int>(j)).y()});
+    }
 }
 
 }  // namespace
@@ -146,6 +156,7 @@ void Metrics::add(const Metrics& o) {
   append(robot_position_errors_mm, o.robot_position_errors_mm);
   append(robot_orientation_errors_rad, o.robot_orientation_errors_rad);
   append(ball_position_errors_mm, o.ball_position_errors_mm);
+  misses.insert(misses.end(), o.misses.begin(), o.misses.end());
 }
 
 void scoreFrame(const ssl::SSL_DetectionFrame& truth, const ssl::SSL_DetectionFrame* det,
@@ -163,14 +174,20 @@ void scoreFrame(const ssl::SSL_DetectionFrame& truth, const ssl::SSL_DetectionFr
   const std::vector<int> t2d = pairClosest(
       truth.balls(), balls, options.ball_radius_mm, [](int, int) { return true; }, &det_to_truth);
   for (int i = 0; i < truth.balls_size(); ++i) {
-    if (t2d[i] < 0) continue;
+    if (t2d[i] < 0) {
+      m.misses.push_back({Miss::BallMissed, truth.balls(i).x(), truth.balls(i).y()});
+      continue;
+    }
     ++m.matched_balls;
     const auto& t = truth.balls(i);
     const auto& b = balls.Get(t2d[i]);
     m.ball_position_errors_mm.push_back(std::hypot(t.x() - b.x(), t.y() - b.y()));
   }
-  for (int v : det_to_truth)
-    if (v < 0) ++m.false_positive_balls;
+  for (size_t j = 0; j < det_to_truth.size(); ++j)
+    if (det_to_truth[j] < 0) {
+      ++m.false_positive_balls;
+      m.misses.push_back({Miss::FalseBall, balls.Get(static_cast<int>(j)).x(), balls.Get(static_cast<int>(j)).y()});
+    }
 }
 
 EvalReport evaluate(const std::vector<ssl::SSL_DetectionFrame>& truth,

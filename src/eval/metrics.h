@@ -37,6 +37,13 @@ ErrorStats errorStats(std::vector<double> values);
 // Nearest-rank percentile, q in [0, 1]; 0 for an empty sample.
 double percentile(std::vector<double> values, double q);
 
+// Where something went wrong, for the field map of `eval --plot`.
+struct Miss {
+  enum Kind { RobotMissed, RobotWrongId, FalseRobot, BallMissed, FalseBall };
+  Kind kind = RobotMissed;
+  double x = 0, y = 0;  // field mm: the truth's place, or the false detection's
+};
+
 struct Metrics {
   long frames = 0;                   // truth frames scored
   long frames_missing = 0;           // truth frames with no detection frame
@@ -53,6 +60,7 @@ struct Metrics {
   std::vector<double> robot_position_errors_mm;
   std::vector<double> robot_orientation_errors_rad;
   std::vector<double> ball_position_errors_mm;
+  std::vector<Miss> misses;
 
   // Ratios; 1 where the denominator is 0 would hide a problem, so they
   // return 0 then, except precision with no detections and no truth (1).
