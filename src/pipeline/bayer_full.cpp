@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "pipeline/simd_clones.h"
+
 namespace dv {
 
 namespace {
@@ -55,7 +57,7 @@ inline void windowAt(const WindowRows& w, BayerSites s, int width, int x, int& r
 // offsets from 2i are constants for a red column parity RX and first-row
 // green parity G0 (blue's column parity is 1 - RX in every pattern).
 template <int RX, int G0>
-__attribute__((target_clones("avx2", "default"))) void fullChromaPairs(
+DV_TEMPLATE_AVX2_CLONES void fullChromaPairs(
     const WindowRows& w, int i0, int i1, const ChromaFixed& k, uint32_t* out) {
   constexpr int BX = 1 - RX;
   // Site and next-site column offsets of the even (e) and odd (o) window.

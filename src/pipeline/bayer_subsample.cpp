@@ -7,6 +7,7 @@
 #endif
 
 #include "pipeline/kernels.h"
+#include "pipeline/simd_clones.h"
 
 namespace dv {
 
@@ -26,7 +27,7 @@ namespace {
 // One output row for the sites given at compile time, so the inner loop has
 // constant offsets the compiler can vectorise.
 template <int RX, int RY, int BX, int BY>
-__attribute__((target_clones("avx2", "default"))) void subsampleRow(
+DV_TEMPLATE_AVX2_CLONES void subsampleRow(
     const uint8_t* r_row, const uint8_t* r_nrow, const uint8_t* b_row, const uint8_t* b_nrow,
     const uint8_t* g_row0, const uint8_t* g_row1, int ws, int c0, int c1, uint8_t* out) {
   // Red moves toward +x if it sits at column offset 0, else toward -x.
@@ -177,7 +178,7 @@ __attribute__((target("avx2"))) int chromaRowAvx2(const uint8_t* r_row, const ui
 #endif
 
 template <int RX, int RY, int BX, int BY>
-__attribute__((target_clones("avx2", "default"))) void chromaRow(
+DV_TEMPLATE_AVX2_CLONES void chromaRow(
     const uint8_t* r_row, const uint8_t* r_nrow, const uint8_t* b_row, const uint8_t* b_nrow,
     const uint8_t* g_row0, const uint8_t* g_row1, int ws, int c0, int c1, const ChromaFixed& k,
     uint32_t* out) {
