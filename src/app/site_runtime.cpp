@@ -17,6 +17,10 @@
 namespace dv::app {
 
 namespace {
+
+// As often as the publisher repeats the geometry (SSL-Vision: 3 s), so a
+// restarted publisher has every camera back before its second publication.
+constexpr auto kCalibrationResendInterval = std::chrono::seconds(3);
 constexpr size_t kRawRingBytes = size_t{1} << 30;  // per camera: 10 s of 1224 x 1024, 3.4 s of 2448 x 2048 at 60 fps
 
 std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
@@ -238,6 +242,17 @@ void SiteRuntime::setReferee(const RefereeSnapshot& referee) {
   for (auto& r : runners_) r->setDetectorOptions(d);
 }
 
+void SiteRuntime::tick() {
+  outputs_->tick();
+  std::lock_guard<std::mutex> lock(sent_mutex_);
+  if (sent_.cameras.empty() || std::chrono::steady_clock::now() < sent_.next) return;
+  sent_.next = std::chrono::steady_clock::now() + kCalibrationResendInterval;
+  try {
+    CalibrationSender(sent_.addr, sent_.port).send(geometry_.field, sent_.cameras);
+  } catch (const InputError&) {  // the address was good when it was first sent to
+  }
+}
+
 std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c, const std::string& publisher) {
   const std::string name = "camera " + std::to_string(c.camera_id);
   auto runner = std::find_if(runners_.begin(), runners_.end(), [&](const auto& r) { return r->cameraId() == c.camera_id; });
@@ -255,6 +270,15 @@ std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c,
     }
   } else {
     return notes;
+  }
+  {
+    std::lock_guard<std::mutex> lock(sent_mutex_);
+    if (sent_.addr != addr || sent_.port != port) sent_.cameras.clear();
+    sent_.addr = addr;
+    sent_.port = port;
+    std::erase_if(sent_.cameras, [&](const CameraCalibration& s) { return s.camera_id == c.camera_id; });
+    sent_.cameras.push_back(c);
+    sent_.next = std::chrono::steady_clock::now() + kCalibrationResendInterval;
   }
   CalibrationSender sender(addr, port);
   if (sender.send(geometry_.field, {c}))
