@@ -288,6 +288,42 @@ std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c,
   return notes;
 }
 
+// The geometry file is read again on each reload: a camera whose
+// calibration changed (another lens, a camera of another size) gets it as a
+// console-accepted one does; frames that no longer fit it are then skipped
+// and counted. A file that does not load keeps what runs.
+void SiteRuntime::reloadGeometry(const SiteConfig& next, std::vector<std::string>& notes) {
+  const std::string& mode = config_.network.geometry;
+  if (mode != "file" && mode != "publish") return;
+  if (next.network.geometry != mode || next.network.geometry_file != config_.network.geometry_file) {
+    notes.push_back("geometry source or file changed: restart serve to use it");
+    return;
+  }
+  const std::string& file = config_.network.geometry_file;
+  Geometry g;
+  try {
+    g = geometryFromProto(toProto(loadGeometry(file)), file);
+  } catch (const std::exception& e) {
+    notes.push_back(std::string("geometry not reloaded, the running one stays: ") + e.what());
+    return;
+  }
+  if (toProto(g.field).SerializeAsString() != toProto(geometry_.field).SerializeAsString())
+    notes.push_back(file + ": the field changed: restart serve to use it");
+  for (auto& r : runners_) {
+    const uint32_t id = r->cameraId();
+    const CameraCalibration* now = geometry_.camera(id);
+    const CameraCalibration* c = g.camera(id);
+    const std::string name = "camera " + std::to_string(id);
+    if (!c) {
+      notes.push_back(name + ": not in " + file + "; it keeps its calibration");
+    } else if (!now || !(*c == *now)) {
+      notes.push_back(name + ": new calibration from " + file + " (" + std::to_string(c->image_width) + " x " +
+                      std::to_string(c->image_height) + " px)");
+      for (std::string& n : setCalibration(*c, "")) notes.push_back(std::move(n));
+    }
+  }
+}
+
 std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
   std::vector<std::string> notes;
   // Cameras are matched by id; a changed source or a new or removed camera needs a restart.
@@ -336,6 +372,7 @@ std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
       notes.push_back(std::string("network target not changed: ") + e.what());
     }
   }
+  reloadGeometry(next, notes);
   char heights[96];
   std::snprintf(heights, sizeof heights, "yellow %.1f mm, blue %.1f mm", current_heights_.yellow_mm,
                 current_heights_.blue_mm);

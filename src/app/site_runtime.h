@@ -5,7 +5,8 @@
 // the in-process geometry publisher or the network), and the robot heights
 // from the config's team table and the game controller's team names.
 // reload() takes a new, validated config: detector options, robot heights,
-// camera settings and network targets change in place, tracks stay;
+// camera settings, network targets and the geometry file's calibrations
+// change in place, tracks stay;
 // changes that need a restart (cameras added, removed or moved to another
 // source) are named and not applied.
 #include <atomic>
@@ -75,6 +76,7 @@ class SiteRuntime : public ConsoleHost {
   DetectorOptions detectorOptions() const;
   void rebuildHeights();  // heights_ from config_.robot_heights, then resolved for referee_
   ProcessorOptions processorOptions(const SiteCamera& cam) const;
+  void reloadGeometry(const SiteConfig& next, std::vector<std::string>& notes);
 
   SiteConfig config_;
   LogFn log_;
