@@ -8,7 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -304,6 +307,43 @@ TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
   const std::string saved = serve_->configText();
   EXPECT_NE(saved.find("default: 135   # the league's usual"), std::string::npos) << saved;
   EXPECT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 135; }));
+}
+
+// Every thread of serve with its name and nice value, from /proc.
+std::multimap<std::string, int> threadNiceByName(pid_t pid) {
+  std::multimap<std::string, int> out;
+  const std::string dir = "/proc/" + std::to_string(pid) + "/task";
+  for (const auto& task : std::filesystem::directory_iterator(dir)) {
+    std::ifstream comm(task.path() / "comm"), stat(task.path() / "stat");
+    std::string name, text;
+    std::getline(comm, name);
+    std::getline(stat, text);
+    // Field 19 is the nice value; fields start after the ")" that ends the name.
+    std::istringstream rest(text.substr(text.rfind(')') + 2));
+    std::string field;
+    for (int i = 3; i <= 19 && rest >> field; ++i) {
+    }
+    out.emplace(name, std::stoi(field));
+  }
+  return out;
+}
+
+TEST_F(ConsoleApi, ConsoleThreadsGiveWayToTheCameras) {
+  for (int i = 0; i < 4; ++i) getJson("/api/status");  // a few requests, on one or more HTTP threads
+  const auto threads = threadNiceByName(serve_->pid());
+  int console = 0, detect = 0;
+  for (const auto& [name, nice] : threads) {
+    if (name == "console") {
+      ++console;
+      EXPECT_EQ(nice, 10) << "an HTTP thread of the console";
+    }
+    if (name.rfind("detect ", 0) == 0) {
+      ++detect;
+      EXPECT_EQ(nice, 0) << name;
+    }
+  }
+  EXPECT_GE(console, 1);
+  EXPECT_EQ(detect, 2) << "one detection thread per camera";
 }
 
 }  // namespace
