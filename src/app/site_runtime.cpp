@@ -26,7 +26,7 @@ constexpr size_t kRawRingBytes = size_t{1} << 30;  // per camera: 10 s of 1224 x
 std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
 
 std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<std::string>& report) {
-  if (isSyntheticSpec(cam.source)) return std::make_unique<SyntheticCamera>(cam.source);
+  if (isSyntheticSpec(cam.source)) return std::make_unique<SyntheticCamera>(cam.source, cam.fps_given ? cam.fps : 0);
   CameraSourceOptions so;
   so.files.fps = cam.fps;
   so.files.bayer = bayerFormatFromName(cam.bayer, "camera " + std::to_string(cam.id) + " bayer");
