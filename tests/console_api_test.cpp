@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <thread>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -329,8 +331,17 @@ std::multimap<std::string, int> threadNiceByName(pid_t pid) {
 }
 
 TEST_F(ConsoleApi, ConsoleThreadsGiveWayToTheCameras) {
-  for (int i = 0; i < 4; ++i) getJson("/api/status");  // a few requests, on one or more HTTP threads
-  const auto threads = threadNiceByName(serve_->pid());
+  // Requests until an HTTP thread has served one and both cameras run (a
+  // loaded machine may take a while).
+  std::multimap<std::string, int> threads;
+  for (int i = 0; i < 60; ++i) {
+    getJson("/api/status");
+    threads = threadNiceByName(serve_->pid());
+    int d = 0;
+    for (const auto& t : threads) d += t.first.rfind("detect ", 0) == 0;
+    if (threads.count("console") > 0 && d == 2) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
   int console = 0, detect = 0;
   for (const auto& [name, nice] : threads) {
     if (name == "console") {
