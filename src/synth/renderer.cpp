@@ -267,6 +267,8 @@ struct Renderer::Impl {
       add(front, back, gw, gw + g);
       add(front, back, -gw - g, -gw);
     }
+    for (const SceneBox& c : spec.clutter)
+      boxes.push_back({{c.min.x, c.min.y, c.min.z}, {c.max.x, c.max.y, c.max.z}, c.color});
   }
 
   void binStatic(size_t ci) {

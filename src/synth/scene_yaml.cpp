@@ -378,7 +378,7 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
               {"name", "seed", "field", "cameras", "robots", "random_robots", "ball",
                "random_motion", "materials", "lighting", "noise_sigma", "shot_noise",
                "lens_blur_px", "frames", "fps", "motion_blur", "motion_blur_samples", "bayer",
-               "png", "antialias", "jpeg_quality"});
+               "png", "antialias", "jpeg_quality", "clutter"});
   SceneSpec s;
   with(root, "name", [&](const YAML::Node& v) { s.name = r.text(v, "name"); });
   with(root, "seed", [&](const YAML::Node& v) { s.seed = r.seed(v, "seed"); });
@@ -403,6 +403,20 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
         if (s.robots[j].team == s.robots[i].team && s.robots[j].id == s.robots[i].id)
           r.fail(v[i], "robots[" + std::to_string(i) + "]: this team already has id " +
                            std::to_string(s.robots[i].id));
+    }
+  });
+  with(root, "clutter", [&](const YAML::Node& v) {
+    if (!v.IsSequence()) r.fail(v, "clutter: expected a list");
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string where = "clutter[" + std::to_string(i) + "]";
+      r.checkKeys(v[i], where, {"min", "max", "color"});
+      for (const char* k : {"min", "max", "color"})
+        if (!v[i][k].IsDefined()) r.fail(v[i], where + ": missing key '" + k + "'");
+      SceneBox b{r.point3(v[i]["min"], where + ".min"), r.point3(v[i]["max"], where + ".max"),
+                 r.color(v[i]["color"], where + ".color")};
+      if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z && b.min.z >= 0))
+        r.fail(v[i], where + ": min must lie below max on every axis, and not under the floor");
+      s.clutter.push_back(b);
     }
   });
   with(root, "materials", [&](const YAML::Node& v) { s.materials = readMaterials(r, v); });
