@@ -10,6 +10,8 @@ namespace dv {
 
 namespace {
 
+constexpr double kLineOffsetSigmaMm = 15;  // as JointRefineOptions::line_offset_sigma_mm
+
 // The line pixels of a short stretch of one model line (a bin): their mean
 // signed distance to the line is where the model puts the painted line's
 // center there. The line's width, which dominates single pixels' distances,
@@ -23,15 +25,16 @@ struct LineBin {
 
 struct LensBinResidual {
   LensBinResidual(const LineBin* b, const FieldLineElement* e) : b(b), e(e) {}
+  // `offset`: where the painted line lies off its nominal place (mm).
   template <typename T>
-  bool operator()(const T* intr, const T* lens, const T* rot, const T* pos, T* r) const {
+  bool operator()(const T* intr, const T* lens, const T* rot, const T* pos, const T* offset, T* r) const {
     T sum(0);
     for (const ImagePx& px : b->px) {
       T xy[2];
       if (!backProjectPixelLens(intr, lens, rot, pos, px.u, px.v, 0.0, xy)) return false;
       sum += e->signedDistance(xy);
     }
-    r[0] = sum * T(b->inv_scale / double(b->px.size()));
+    r[0] = (sum / T(double(b->px.size())) - offset[0]) * T(b->inv_scale);
     return true;
   }
   const LineBin* b;
@@ -80,12 +83,14 @@ std::vector<LineBin> binMatches(const CameraParams& p, const std::vector<LinePix
 }
 
 // Residuals of the bins (px) for parameters p.
-std::vector<double> binResiduals(const CameraParams& p, const std::vector<LineBin>& bins, const FieldLineModel& model) {
+std::vector<double> binResiduals(const CameraParams& p, const std::vector<double>& offsets,
+                                 const std::vector<LineBin>& bins, const FieldLineModel& model) {
   std::vector<double> r;
   r.reserve(bins.size());
   for (const auto& b : bins) {
     double v = 1e3;  // no ray: far off
-    LensBinResidual(&b, &model.elements()[b.element])(p.intrinsics, p.lens, p.rotation, p.position, &v);
+    LensBinResidual(&b, &model.elements()[b.element])(p.intrinsics, p.lens, p.rotation, p.position,
+                                                       &offsets[b.element], &v);
     r.push_back(v);
   }
   return r;
@@ -139,6 +144,19 @@ struct LensPointResidual {
 
 // Weak prior toward no lens terms: sigma_px of displacement at the image
 // corner for each term, so the terms a small view cannot see stay near 0.
+// Painted lines lie within a few centimetres of their nominal place (the
+// joint refinement's prior): an offset explains a misplaced line in both
+// models, so that lens terms are not taken for it.
+struct LineOffsetPrior {
+  explicit LineOffsetPrior(double sigma) : sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* o, T* r) const {
+    r[0] = o[0] / T(sigma);
+    return true;
+  }
+  double sigma;
+};
+
 struct LensPrior {
   LensPrior(double f, double r, double sigma_px) {
     const double scale[4] = {f * std::pow(r, 5), f * std::pow(r, 7), f * r * r, f * r * r};
@@ -175,13 +193,18 @@ LensFitResult fitLensOnLines(const CameraParams& league, const std::vector<Image
   // The same objective for both models (bins, points, priors), so that the
   // comparison is between nested fits and not against a start that another
   // objective (single pixels) optimised.
-  const auto solve = [&](CameraParams& cp, bool with_lens) {
+  const auto solve = [&](CameraParams& cp, std::vector<double>& offsets, bool with_lens) {
     ceres::Problem problem;
     ceres::LossFunction* loss = new ceres::CauchyLoss(o.loss_scale_px);
     for (const auto& b : bins)
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<LensBinResidual, 1, 4, 4, 3, 3>(
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<LensBinResidual, 1, 4, 4, 3, 3, 1>(
                                    new LensBinResidual(&b, &model.elements()[b.element])),
-                               loss, cp.intrinsics, cp.lens, cp.rotation, cp.position);
+                               loss, cp.intrinsics, cp.lens, cp.rotation, cp.position, &offsets[b.element]);
+    for (auto& v : offsets)
+      if (problem.HasParameterBlock(&v))
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<LineOffsetPrior, 1, 1>(
+                                     new LineOffsetPrior(kLineOffsetSigmaMm)),
+                                 nullptr, &v);
     for (const auto& pt : points)
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<LensPointResidual, 2, 4, 4, 3, 3>(
                                    new LensPointResidual(pt.field, pt.image, o.point_sigma_px)),
@@ -227,12 +250,14 @@ LensFitResult fitLensOnLines(const CameraParams& league, const std::vector<Image
            (o.fix_height || !atBound(cp.position[2], league.position[2]));
   };
   CameraParams plain = league, cp = league;
-  if (!solve(plain, false)) return result;
+  std::vector<double> plain_offsets(model.elements().size(), 0.0);
+  if (!solve(plain, plain_offsets, false)) return result;
   cp = plain;
-  if (!solve(cp, true)) return result;
-  const std::vector<double> r0 = binResiduals(plain, bins, model);
+  std::vector<double> offsets = plain_offsets;
+  if (!solve(cp, offsets, true)) return result;
+  const std::vector<double> r0 = binResiduals(plain, plain_offsets, bins, model);
   result.league_rms_px = result.lens_rms_px = rms(r0);
-  const std::vector<double> r1 = binResiduals(cp, bins, model);
+  const std::vector<double> r1 = binResiduals(cp, offsets, bins, model);
   const double c0 = meanCauchy(r0, o.loss_scale_px), c1 = meanCauchy(r1, o.loss_scale_px);
   // The criterion counts independent samples: n (1 - rho) / (1 + rho) for
   // residuals correlated as a first-order autoregression along the lines.
