@@ -74,6 +74,17 @@ TEST(GeometryLens, PacketsCarryTheLeagueFit) {
   EXPECT_NE(m.distortion(), float(lens.distortion));
 }
 
+TEST(GeometryLens, ProcessorsKeepTheLensAtWirePrecision) {
+  const Geometry g = geometryWith(issueLens());
+  const Geometry used = withWirePrecision(g, "g");
+  ASSERT_EQ(used.cameras.size(), 2u);
+  EXPECT_EQ(used.cameras[0].lens.k2, double(float(-0.004)));
+  EXPECT_EQ(used.cameras[0].focal_length, double(float(g.cameras[0].focal_length)));
+  EXPECT_EQ(used.cameras[0].tz, double(float(g.cameras[0].tz)));
+  // A camera without terms is exactly what the wire carries.
+  EXPECT_EQ(used.cameras[1], geometryFromProto(toProto(g), "g").cameras[1]);
+}
+
 TEST(GeometryLens, YamlKeepsTheTerms) {
   const Geometry g = geometryWith(issueLens());
   const std::string text = toYaml(g);
@@ -90,14 +101,16 @@ TEST(GeometryLens, YamlKeepsTheTerms) {
 }
 
 TEST(GeometryLens, YamlBadTermsAreNamed) {
-  std::string text = toYaml(geometryWith(issueLens()));
-  const auto at = text.find("k3");
-  ASSERT_NE(at, std::string::npos);
-  std::string bad = text;
-  bad.replace(at, 2, "k4");
+  const std::string text = toYaml(geometryWith(issueLens()));
+  // Each edit swaps one token of the written text.
+  const auto swapped = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.substr(0, at) + to + text.substr(at + from.size());
+  };
+  std::string bad = swapped("k3", "k4");
   EXPECT_NE(errorOf([&] { geometryFromYaml(bad, "g.yaml"); }).find("unknown key 'k4' in 'lens'"), std::string::npos);
-  bad = text;
-  bad.replace(text.find("k2: ") + 4, 1, "x");
+  bad = swapped("k2: -", "k2: x");
   EXPECT_NE(errorOf([&] { geometryFromYaml(bad, "g.yaml"); }).find("'lens.k2' must be a number"), std::string::npos);
 }
 
@@ -123,6 +136,16 @@ TEST(GeometryLens, JsonHoldsTheLeagueFitAndTheFullLens) {
   const TempDir dir("dv_geometry_lens_test");
   saveGeometry(g, dir.file("g.json"));
   EXPECT_EQ(loadGeometry(dir.file("g.json")).cameras[0], back.cameras[0]);
+}
+
+// The fuzz targets' seeds with lens terms are valid files, in both forms.
+TEST(GeometryLens, FuzzSeedsWithLensesLoad) {
+  for (const char* f : {"/fuzz/corpus/geometry_json/lens.json", "/fuzz/corpus/geometry_yaml/lens.yaml"}) {
+    const Geometry g = loadGeometry(std::string(DV_SOURCE_DIR) + f);
+    ASSERT_EQ(g.cameras.size(), 1u) << f;
+    EXPECT_EQ(g.cameras[0].lens.k2, -0.004) << f;
+    EXPECT_EQ(g.cameras[0].distortion, 0.026) << f;
+  }
 }
 
 TEST(GeometryLens, JsonBadLensEntriesAreNamed) {

@@ -237,6 +237,21 @@ dv::ssl::SSL_GeometryData toProto(const Geometry& g) {
   return m;
 }
 
+Geometry withWirePrecision(const Geometry& g, const std::string& source) {
+  Geometry out = geometryFromProto(toProto(g), source);
+  for (const auto& c : g.cameras) {
+    if (!c.lens.any()) continue;
+    const auto f = [](double v) { return double(float(v)); };
+    CameraCalibration r = c;
+    for (double* v : {&r.focal_length, &r.principal_point_x, &r.principal_point_y, &r.distortion, &r.q0, &r.q1,
+                      &r.q2, &r.q3, &r.tx, &r.ty, &r.tz, &r.lens.k2, &r.lens.k3, &r.lens.p1, &r.lens.p2})
+      *v = f(*v);
+    for (auto& o : out.cameras)
+      if (o.camera_id == c.camera_id) o = r;
+  }
+  return out;
+}
+
 // ---- validation ----
 
 std::optional<std::string> calibrationProblem(const CameraCalibration& c) {

@@ -45,6 +45,10 @@ Geometry geometryFromJson(const std::string& text, const std::string& source);
 std::string toJson(const Geometry& g);
 
 dv::ssl::SSL_GeometryData toProto(const Geometry& g);
+// What processors use: `g` through the wire's single-precision floats, so
+// replays match; a camera with lens terms keeps its own lens (rounded the
+// same way) where the wire would carry its league fit.
+Geometry withWirePrecision(const Geometry& g, const std::string& source);
 dv::ssl::SSL_GeometryFieldSize toProto(const FieldModel& f);
 // Fills derived_camera_world_* from CameraModel::position(), and
 // pixel_image_width/height when known (non-zero). A calibration with lens
