@@ -127,7 +127,7 @@ std::string formatReport(const CalibrationReport& r) {
     if (r.lens) {
       const auto& l = c.lens;
       std::snprintf(buf, sizeof buf,
-                    "  lens: %s; line residual (rms) league model %.3f px, with k2 k3 p1 p2 %.3f px over %d px, "
+                    "  lens: %s; line residual (rms) league model %.3f px, with k2 k3 p1 p2 %.3f px over %d line bins, "
                     "information gain %.1f\n",
                     r.lens->lens_used ? "terms beyond the league's model taken" : "the league's model",
                     r.lens->league_rms_px, r.lens->lens_rms_px, r.lens->pixels, r.lens->information_gain);
