@@ -459,11 +459,12 @@ void applyLensCameras(const nlohmann::json& lenses, Geometry& g, const std::stri
     const std::string at = std::string(kLensKey) + "[" + std::to_string(i) + "]";
     const nlohmann::json& e = lenses[i];
     if (!e.is_object()) throw InputError(source, at + " must be an object");
-    for (const auto& [key, value] : e.items()) {
+    for (auto it = e.begin(); it != e.end(); ++it) {
+      const std::string& key = it.key();
       if (std::find_if(std::begin(kLensCameraKeys), std::end(kLensCameraKeys),
                        [&](const char* k) { return key == k; }) == std::end(kLensCameraKeys))
         throw InputError(source, at + ": unknown key \"" + key + "\"");
-      if (!value.is_number()) throw InputError(source, at + ": \"" + key + "\" must be a number");
+      if (!it.value().is_number()) throw InputError(source, at + ": \"" + key + "\" must be a number");
     }
     for (const char* k : kLensCameraKeys)
       if (!e.contains(k)) throw InputError(source, at + " lacks \"" + std::string(k) + "\"");
