@@ -70,6 +70,18 @@ TEST(SynthScene, MinimalSceneLoads) {
   EXPECT_NEAR(px->v, 63.5, 1e-9);
 }
 
+// A camera may carry lens terms beyond the league's model; a wrong count is named.
+TEST(SynthScene, CameraLensTerms) {
+  std::string text = kMinimal;
+  const std::string cam = "focal_length: 300,";
+  text.insert(text.find(cam) + cam.size(), " lens: [-0.004, 0.0001, 0.0006, -0.0004],");
+  const SceneSpec s = loadScene(writeTemp("lens.yaml", text));
+  EXPECT_EQ(s.cameras[0].calib.lens, (LensTerms{-0.004, 0.0001, 0.0006, -0.0004}));
+  std::string bad = kMinimal;
+  bad.insert(bad.find(cam) + cam.size(), " lens: [-0.004, 0],");
+  EXPECT_NE(loadError("bad_lens.yaml", bad).find("cameras[0].lens"), std::string::npos) << loadError("bad_lens.yaml", bad);
+}
+
 TEST(SynthScene, MalformedYamlNamesFileLineAndColumn) {
   const std::string msg = loadError("malformed.yaml", "name: x\ncameras: [\n  {id: 0,\n");
   EXPECT_NE(msg.find("malformed.yaml"), std::string::npos) << msg;

@@ -98,7 +98,7 @@ SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config),
   }
   // What the cameras use is what is published (and written to a raw dump):
   // the protocol's single-precision floats, so replays match to the bit.
-  geometry_ = geometryFromProto(toProto(geometry_), "geometry");
+  geometry_ = withWirePrecision(geometry_, "geometry");
   if (net.geometry == "publish") {
     GeometryPublisherOptions po;
     po.group = net.vision_group;

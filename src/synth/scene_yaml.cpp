@@ -178,7 +178,7 @@ FieldModel readField(const SceneReader& r, const YAML::Node& n) {
 SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) {
   const std::string where = "cameras[" + std::to_string(index) + "]";
   r.checkKeys(n, where,
-              {"id", "position", "look_at", "up", "focal_length", "distortion",
+              {"id", "position", "look_at", "up", "focal_length", "distortion", "lens",
                "principal_offset", "size", "principal_point", "q", "t"});
   const uint32_t id = uint32_t(
       n["id"].IsDefined() ? r.integer(n["id"], where + ".id", 0, 1000) : int(index));
@@ -190,6 +190,11 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
   const double focal = r.number(n["focal_length"], where + ".focal_length", 1, 1e6);
   double k = 0;
   with(n, "distortion", [&](const YAML::Node& v) { k = r.number(v, where + ".distortion", -10, 10); });
+  LensTerms lens;  // [k2, k3, p1, p2] beyond the league's model (camera_model.h)
+  with(n, "lens", [&](const YAML::Node& v) {
+    const auto l = r.numbers(v, where + ".lens", 4, 4, -10, 10);
+    lens = {l[0], l[1], l[2], l[3]};
+  });
   const bool pose = n["position"].IsDefined() || n["look_at"].IsDefined();
   const bool explicit_pose = n["q"].IsDefined() || n["t"].IsDefined();
   if (pose && explicit_pose)
@@ -210,7 +215,9 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
     });
     if (pos.z <= 0) r.fail(n["position"], where + ".position: the camera must be above the field");
     try {
-      return makeCamera(id, pos, at, focal, k, offset, uint32_t(size[0]), uint32_t(size[1]), up);
+      SceneCamera c = makeCamera(id, pos, at, focal, k, offset, uint32_t(size[0]), uint32_t(size[1]), up);
+      c.calib.lens = lens;
+      return c;
     } catch (const std::invalid_argument& e) {
       r.fail(n, where + ": " + e.what());
     }
@@ -224,6 +231,7 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
   c.calib.camera_id = id;
   c.calib.focal_length = focal;
   c.calib.distortion = k;
+  c.calib.lens = lens;
   c.calib.principal_point_x = (size[0] - 1) / 2;
   c.calib.principal_point_y = (size[1] - 1) / 2;
   with(n, "principal_point", [&](const YAML::Node& v) {

@@ -188,7 +188,8 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
     }
     const auto fit = refineOnLines(pose->params, obs.pixels, model, req.points, lf);
     r.refinement_accepted = fit.improved;
-    r.calibration = fit.params.toCalibration(req.camera_id, w, h);
+    r.lens = fitLensOnLines(fit.params, obs.pixels, model, req.points, lf);
+    r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
     r.has_pose = true;
     r.symmetry = decidedByPoints(fit.params, w, h);
     // The points say where the camera is: no region to check against.
@@ -219,6 +220,8 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
                 choice.decision.reason + "; give --near X,Y (roughly where the camera looks) or four points";
     return r;
   }
+  r.lens = fitLensOnLines(choice.params, obs.pixels, model, {}, lf);
+  r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
   finish(r, obs, field, plan.gate_on_region ? std::optional<FieldRect>(plan.region) : std::nullopt);
   if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
   if (r.problem) refuse(*r.problem);

@@ -12,6 +12,7 @@
 #include "geometry/calibration/calibration_quality.h"
 #include "geometry/calibration/field_symmetry.h"
 #include "geometry/calibration/intrinsics.h"
+#include "geometry/calibration/lens_fit.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/point_pose.h"
 #include "geometry/calibration/view_hint.h"
@@ -59,6 +60,9 @@ struct CalibrationOutcome {
   std::optional<std::string> problem;
   std::optional<IntrinsicsResult> intrinsics;
   bool refinement_accepted = false;
+  // The lens terms beyond the league's model, tried once a pose is found;
+  // `calibration` carries them when the lines support them.
+  std::optional<LensFitResult> lens;
   bool automatic = false;
   bool has_pose = false;  // `calibration` holds a pose (passed or refused)
   // How the field's half-turn symmetry was settled; empty when no pose was
