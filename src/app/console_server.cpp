@@ -4,6 +4,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -25,13 +27,16 @@ namespace {
 
 // The console's threads give way to the cameras' (issue: the console must
 // cost the detection nothing measurable): each HTTP thread lowers its own
-// priority to nice 10 at its first request (Linux: a thread's own), so
+// priority by 10 nice steps at its first request (Linux: a thread's own), so
 // encoding images and the layer pipeline get the CPU the detection threads
 // leave, wherever the browsers are.
 void giveWayToTheCameras() {
   thread_local const bool done = [] {
     pthread_setname_np(pthread_self(), "console");
-    return ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10) == 0;
+    const id_t self = static_cast<id_t>(::gettid());
+    errno = 0;
+    const int now = ::getpriority(PRIO_PROCESS, self);  // serve may run niced already
+    return errno == 0 && ::setpriority(PRIO_PROCESS, self, std::min(19, now + 10)) == 0;
   }();
   (void)done;
 }
