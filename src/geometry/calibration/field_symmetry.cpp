@@ -69,6 +69,26 @@ SymmetryChoice chooseNearTarget(const CameraParams& found, FieldMm target, const
   return c;
 }
 
+SymmetryChoice chooseInRegion(const CameraParams& found, const FieldRect& region, const std::string& basis, int w,
+                              int h) {
+  const FieldMm center{(region.x_min + region.x_max) / 2, (region.y_min + region.y_max) / 2};
+  const CameraParams twin = halfTurnTwin(found);
+  const FieldMm a = viewCenter(found, w, h), b = viewCenter(twin, w, h);
+  const bool in_a = region.contains(a), in_b = region.contains(b);
+  if (in_a && in_b) return chooseNearTarget(found, center, basis, w, h);
+  SymmetryChoice c{in_b ? twin : found, {}};
+  c.decision = in_b ? describeBoth(twin, found, w, h) : describeBoth(found, twin, w, h);
+  c.decision.basis = basis;
+  if (!in_a && !in_b) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "neither reading looks into x %.0f..%.0f, y %.0f..%.0f", region.x_min,
+                  region.x_max, region.y_min, region.y_max);
+    c.decision.decided = false;
+    c.decision.reason = buf;
+  }
+  return c;
+}
+
 SymmetryDecision decidedByPoints(const CameraParams& p, int w, int h) {
   SymmetryDecision d = describeBoth(p, halfTurnTwin(p), w, h);
   d.basis = "the given points";
