@@ -99,10 +99,21 @@ double pointsScale(const std::vector<PointCorrespondence>& pts) {
 // Where the automatic search looks, and what settles the symmetry.
 struct SearchPlan {
   FieldRect region;
-  bool gate_on_region = true;  // the region's center must be in view
+  bool by_region = true;  // the view center must lie in the region (else near target)
   FieldMm target{0, 0};
   std::string basis;
 };
+
+// A region's sides on the field's outer lines reach on outwards: a view
+// centre beyond the goal or touch line still lies in the region.
+FieldRect openOuterEdges(FieldRect r, const FieldModel& field) {
+  const double l = field.field_length / 2.0, w = field.field_width / 2.0, far = 1e9;
+  if (r.x_min <= -l) r.x_min = -far;
+  if (r.x_max >= l) r.x_max = far;
+  if (r.y_min <= -w) r.y_min = -far;
+  if (r.y_max >= w) r.y_max = far;
+  return r;
+}
 
 SearchPlan planSearch(const FieldModel& field, const CalibrationRequest& req) {
   SearchPlan plan;
@@ -120,7 +131,7 @@ SearchPlan planSearch(const FieldModel& field, const CalibrationRequest& req) {
       const double hx = (size.x_max - size.x_min) / 2, hy = (size.y_max - size.y_min) / 2;
       plan.target = req.hint.near;
       plan.region = {plan.target.x - hx, plan.target.x + hx, plan.target.y - hy, plan.target.y + hy};
-      plan.gate_on_region = false;  // "roughly where it looks"
+      plan.by_region = false;  // "roughly where it looks"
       plan.basis = req.hint.describe();
       break;
     }
@@ -204,12 +215,14 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   };
   AutoExtrinsicsOptions ao;
   ao.camera_height_mm = req.camera_height_mm;
-  const auto found = findPoseAutomatically(obs, distortion, field, plan.region, w, h, ao);
+  const auto found = findPoseAutomatically(obs, distortion, field, w, h, ao);
   if (!found.params) {
     refuse(found.reason);
     return r;
   }
-  const SymmetryChoice choice = chooseNearTarget(*found.params, plan.target, plan.basis, w, h);
+  const SymmetryChoice choice = plan.by_region
+                                    ? chooseInRegion(*found.params, openOuterEdges(plan.region, field), plan.basis, w, h)
+                                    : chooseNearTarget(*found.params, plan.target, plan.basis, w, h);
   r.symmetry = choice.decision;
   r.refinement_accepted = true;
   r.calibration = choice.params.toCalibration(req.camera_id, w, h);
@@ -219,8 +232,12 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
                 choice.decision.reason + "; give --near X,Y (roughly where the camera looks) or four points";
     return r;
   }
-  finish(r, obs, field, plan.gate_on_region ? std::optional<FieldRect>(plan.region) : std::nullopt);
-  if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  // Without the height, a view straight down drifts along its unobserved
+  // height; ask for it before judging the drifted fit.
+  const auto height_problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  // The symmetry choice has placed the view in the region: no region gate.
+  finish(r, obs, field, std::nullopt);
+  if (height_problem) r.problem = height_problem;
   if (r.problem) refuse(*r.problem);
   return r;
 }
