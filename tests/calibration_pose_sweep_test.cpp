@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <map>
 #include <random>
+#include <spdlog/spdlog.h>
 
 #include "geometry/calibration/calibrate_camera.h"
 #include "synth/renderer.h"
@@ -119,6 +120,8 @@ PoseResult runPose(const PoseSpec& p, uint64_t seed) {
   spec.ball.position = {p.aim.x + 400, p.aim.y - 300, 21.5};
   spec.robots = placeRandomRobots(spec, 0, 4, 4, seed);
   const cv::Mat image = Renderer(spec).render(0, 0).image;
+  spdlog::debug("true camera at ({:.0f}, {:.0f}, {:.0f}), f {:.1f}", p.position.x, p.position.y, p.position.z,
+                cam.calib.focal_length);
 
   CalibrationRequest req;
   req.camera_id = cam.calib.camera_id;
@@ -151,6 +154,7 @@ TEST(CalibrationPoseSweep, AutomaticOnVariedViews) {
   const bool full = std::getenv("DV_SCENE_FULL") != nullptr;
   const int per_class = full ? 8 : 2;
   const char* only = std::getenv("DV_SWEEP_ONLY");
+  if (only) spdlog::set_level(spdlog::level::debug);
   const View views[] = {View::Centre, View::Halfway, View::Penalty, View::Corner, View::Side, View::Layout};
   std::mt19937 rng(19);
   struct Tally {

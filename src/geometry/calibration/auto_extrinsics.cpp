@@ -51,7 +51,8 @@ class RadialTable {
 };
 
 struct Hypothesis {
-  double score = 0;
+  double score = 0, hit_share = 0, rank = 0;
+  cv::Matx33d H;
   std::vector<PointCorrespondence> points;
 };
 
@@ -95,7 +96,7 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
 
   // Line samples on line pixels, less half the ones in view that are not;
   // a cheap pass on every fourth sample drops hopeless matches first.
-  auto score = [&](const cv::Matx33d& H, size_t stride) {
+  auto score = [&](const cv::Matx33d& H, size_t stride, double* hit_share) {
     int visible = 0, hits = 0;
     for (size_t i = 0; i < samples.size(); i += stride) {
       const auto& s = samples[i];
@@ -106,7 +107,42 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
       ++visible;
       if (obs.distance.at<float>(int(px->v + 0.5), int(px->u + 0.5)) <= 3.0f) ++hits;
     }
+    if (hit_share) *hit_share = visible ? double(hits) / visible : 0;
     return double(stride) * (hits - 0.5 * (visible - hits));
+  };
+  // Share of the image's line pixels that lie on a model line under H: a
+  // match that squeezes the field into a cluttered corner scores many
+  // model samples but explains few of the lines seen.
+  std::vector<cv::Point2d> probe;
+  for (size_t i = 0; i < obs.pixels.size(); i += std::max<size_t>(1, obs.pixels.size() / 1500)) {
+    const ImagePx u = dist.undistort(obs.pixels[i]);
+    probe.emplace_back(u.u, u.v);
+  }
+  auto explained = [&](const cv::Matx33d& H) {
+    const cv::Matx33d Hi = H.inv();
+    int on = 0;
+    for (const auto& p : probe) {
+      const cv::Vec3d f = Hi * cv::Vec3d(p.x, p.y, 1);
+      if (std::abs(f[2]) < 1e-12) continue;
+      const FieldMm fp{f[0] / f[2], f[1] / f[2]};
+      const auto near = model.nearest(fp);
+      if (near.element < 0) continue;
+      // Back to the image: the pixel distance to the nearest line point.
+      const FieldLineElement& e = model.elements()[near.element];
+      FieldMm q = fp;
+      if (e.is_arc) {
+        const double r = std::hypot(fp.x - e.center.x, fp.y - e.center.y);
+        if (r > 1e-9) q = {e.center.x + (fp.x - e.center.x) * e.radius / r, e.center.y + (fp.y - e.center.y) * e.radius / r};
+      } else {
+        const double dx = e.b.x - e.a.x, dy = e.b.y - e.a.y, len2 = dx * dx + dy * dy;
+        const double t = std::clamp(((fp.x - e.a.x) * dx + (fp.y - e.a.y) * dy) / len2, 0.0, 1.0);
+        q = {e.a.x + t * dx, e.a.y + t * dy};
+      }
+      const cv::Vec3d b = H * cv::Vec3d(q.x, q.y, 1);
+      if (!(b[2] > 1e-12)) continue;
+      if (std::hypot(b[0] / b[2] - p.x, b[1] / b[2] - p.y) <= 6) ++on;
+    }
+    return probe.empty() ? 0.0 : double(on) / probe.size();
   };
   std::vector<Hypothesis> hyps;
   // Field quad -> undistorted image quad.
@@ -117,11 +153,11 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
     const cv::Vec3d q0 = H * cv::Vec3d(fq[0].x, fq[0].y, 1);
     if (q0[2] < 0) H = -H;
     ++result.hypotheses;
-    if (score(H, 4) <= 0) return;
-    const double s = score(H, 1);
-    if (s <= 0) return;
+    if (score(H, 4, nullptr) <= 0) return;
     Hypothesis h;
-    h.score = s;
+    h.score = score(H, 1, &h.hit_share);
+    if (h.score <= 0) return;
+    h.H = H;
     for (int c = 0; c < 4; ++c) {
       const auto px = dist.distort({quad[c].x, quad[c].y});
       if (!px) return;
@@ -188,6 +224,11 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
     return result;
   }
   std::sort(hyps.begin(), hyps.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
+  // The best by samples, re-ranked by how much of both the model in view
+  // and the lines seen they explain.
+  if (hyps.size() > size_t(o.reranked_hypotheses)) hyps.resize(size_t(o.reranked_hypotheses));
+  for (auto& h : hyps) h.rank = h.hit_share * explained(h.H);
+  std::sort(hyps.begin(), hyps.end(), [](const auto& a, const auto& b) { return a.rank > b.rank; });
 
   // 4. Pose and refinement for the best few distinct hypotheses.
   struct Candidate {
@@ -213,6 +254,8 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
     if (tried >= o.max_refined_hypotheses) break;
     const auto pose = solvePointPose(h.points, dist, po);
     if (!pose || pose->rms_px > 10) continue;
+    // A camera the quality gate would refuse for its height is not worth refining.
+    if (!(pose->params.position[2] > 300 && pose->params.position[2] < 30000)) continue;
     // Same pose as an earlier candidate: nothing new to learn.
     bool seen = false;
     for (const auto& c : candidates)
@@ -226,23 +269,22 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
     result.reason = "no line match gives a plausible camera pose";
     return result;
   }
-  // Final polish of the best with all pixels and then the ambiguity check.
+  // Final polish of the best and of every other that fits about as well
+  // (unless it is the best's twin).
   std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; });
-  LineFitOptions fine = lf;
-  fine.gates_px = {4, 3};
-  fine.max_pixels = 20000;
-  const auto best = refineOnLines(candidates[0].params, obs.pixels, model, {}, fine);
   for (const auto& c : candidates)
     spdlog::debug("calibration candidate: cost {:.4f}, camera at ({:.0f}, {:.0f}, {:.0f}), f {:.1f}", c.cost,
                   c.params.position[0], c.params.position[1], c.params.position[2], c.params.intrinsics[0]);
-  for (size_t i = 1; i < candidates.size(); ++i) {
-    const auto& c = candidates[i];
-    if (apart(c.params, best.params) > 150 && c.cost < 1.15 * candidates[0].cost) {
-      result.reason = "two different poses fit the lines about equally well";
-      return result;
-    }
+  LineFitOptions fine = lf;
+  fine.gates_px = {4, 3};
+  fine.max_pixels = 20000;
+  for (const auto& c : candidates) {
+    if (c.cost > 1.15 * candidates[0].cost) break;
+    bool known = false;
+    for (const auto& r : result.readings)
+      if (apart(r, c.params) < 150) known = true;
+    if (!known) result.readings.push_back(refineOnLines(c.params, obs.pixels, model, {}, fine).params);
   }
-  result.params = best.params;
   return result;
 }
 

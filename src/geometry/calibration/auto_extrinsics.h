@@ -17,11 +17,17 @@ namespace dv {
 struct AutoExtrinsicsOptions {
   std::optional<double> camera_height_mm;
   int max_refined_hypotheses = 6;
+  int reranked_hypotheses = 80;
 };
 
 struct AutoExtrinsicsResult {
-  std::optional<CameraParams> params;
-  std::string reason;  // why params is empty
+  // Every pose that fits the lines about equally well, each up to its half
+  // turn, the best first; one in the usual case, more where the view itself
+  // is symmetric (the centre circle with both centre lines and nothing else
+  // looks the same after a quarter turn). The caller picks with outside
+  // knowledge or refuses.
+  std::vector<CameraParams> readings;
+  std::string reason;  // why readings is empty
   int hypotheses = 0;
 };
 

@@ -9,6 +9,8 @@
 #include "geometry/calibration/auto_extrinsics.h"
 #include "geometry/calibration/line_fit.h"
 #include "geometry/calibration/line_pixels.h"
+#include "geometry/calibration/pose_uncertainty.h"
+#include <spdlog/spdlog.h>
 
 namespace dv {
 
@@ -79,6 +81,34 @@ std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool h
                 "the camera looks nearly straight down (%.1f deg), so its height cannot be observed; "
                 "give --camera-height",
                 tilt_deg);
+  return std::string(buf);
+}
+
+// A pose the lines fit but do not pin down (too little of the field in
+// view) is refused rather than written: its predicted field error must stay
+// within the millimetre the calibration promises. The prediction takes the
+// pixel noise from the residuals' spread across the painted line's width,
+// so it runs two to four times above the error actually found.
+constexpr double kMaxPredictedErrorMm = 1.0;
+
+std::optional<std::string> poorlyPinned(CalibrationOutcome& r, const LineObservation& obs, const FieldLineModel& model,
+                                        const FieldModel& field, const CalibrationRequest& req, int w, int h) {
+  PoseUncertaintyOptions uo;
+  uo.height_fixed = req.camera_height_mm.has_value();
+  uo.width = w, uo.height = h;
+  r.predicted_error =
+      predictFieldError(CameraParams::fromCalibration(r.calibration), obs.pixels, model, field.withBoundary(), uo);
+  if (!r.predicted_error) return std::string("too few line pixels fit to judge the pose");
+  const auto& e = *r.predicted_error;
+  spdlog::debug("predicted field error {:.3f} mm at z=0, {:.3f} mm at z=150 (noise {:.2f} px, {} px)", e.at_carpet_mm,
+                e.at_150_mm, e.noise_px, e.pixels_used);
+  const double worst = std::max(e.at_carpet_mm, e.at_150_mm);
+  if (worst <= kMaxPredictedErrorMm) return std::nullopt;
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "the lines in view do not pin the pose down (predicted field error %.2f mm at z=0, %.2f mm at "
+                "z=150)%s",
+                e.at_carpet_mm, e.at_150_mm, uo.height_fixed ? "" : "; give --camera-height");
   return std::string(buf);
 }
 
@@ -216,13 +246,17 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   AutoExtrinsicsOptions ao;
   ao.camera_height_mm = req.camera_height_mm;
   const auto found = findPoseAutomatically(obs, distortion, field, w, h, ao);
-  if (!found.params) {
+  if (found.readings.empty()) {
     refuse(found.reason);
     return r;
   }
-  const SymmetryChoice choice = plan.by_region
-                                    ? chooseInRegion(*found.params, openOuterEdges(plan.region, field), plan.basis, w, h)
-                                    : chooseNearTarget(*found.params, plan.target, plan.basis, w, h);
+  if (!plan.by_region && found.readings.size() > 1) {
+    refuse("different poses fit the lines about equally well, and --near cannot tell them apart");
+    return r;
+  }
+  const SymmetryChoice choice =
+      plan.by_region ? chooseInRegion(found.readings, openOuterEdges(plan.region, field), plan.basis, w, h)
+                     : chooseNearTarget(found.readings[0], plan.target, plan.basis, w, h);
   r.symmetry = choice.decision;
   r.refinement_accepted = true;
   r.calibration = choice.params.toCalibration(req.camera_id, w, h);
@@ -234,10 +268,17 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   }
   // Without the height, a view straight down drifts along its unobserved
   // height; ask for it before judging the drifted fit.
-  const auto height_problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  auto height_problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  const double z = CameraModel(r.calibration).position().z();
+  if (!height_problem && !req.camera_height_mm && !(z >= 500 && z <= 20000)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the lines do not fix the camera height (the fit drifts to %.0f mm); give --camera-height", z);
+    height_problem = std::string(buf);
+  }
   // The symmetry choice has placed the view in the region: no region gate.
   finish(r, obs, field, std::nullopt);
   if (height_problem) r.problem = height_problem;
+  if (!r.problem) r.problem = poorlyPinned(r, obs, model, field, req, w, h);
   if (r.problem) refuse(*r.problem);
   return r;
 }

@@ -14,6 +14,7 @@
 #include "geometry/calibration/intrinsics.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/point_pose.h"
+#include "geometry/calibration/pose_uncertainty.h"
 #include "geometry/calibration/view_hint.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
@@ -58,6 +59,9 @@ struct CalibrationOutcome {
   // must not write or send `calibration` then.
   std::optional<std::string> problem;
   std::optional<IntrinsicsResult> intrinsics;
+  // Automatic mode: how far off the field positions may be, given what the
+  // lines in view pin down.
+  std::optional<PredictedFieldError> predicted_error;
   bool refinement_accepted = false;
   bool automatic = false;
   bool has_pose = false;  // `calibration` holds a pose (passed or refused)

@@ -69,22 +69,30 @@ SymmetryChoice chooseNearTarget(const CameraParams& found, FieldMm target, const
   return c;
 }
 
-SymmetryChoice chooseInRegion(const CameraParams& found, const FieldRect& region, const std::string& basis, int w,
-                              int h) {
+SymmetryChoice chooseInRegion(const std::vector<CameraParams>& readings, const FieldRect& region,
+                              const std::string& basis, int w, int h) {
   const FieldMm center{(region.x_min + region.x_max) / 2, (region.y_min + region.y_max) / 2};
-  const CameraParams twin = halfTurnTwin(found);
-  const FieldMm a = viewCenter(found, w, h), b = viewCenter(twin, w, h);
-  const bool in_a = region.contains(a), in_b = region.contains(b);
-  if (in_a && in_b) return chooseNearTarget(found, center, basis, w, h);
-  SymmetryChoice c{in_b ? twin : found, {}};
-  c.decision = in_b ? describeBoth(twin, found, w, h) : describeBoth(found, twin, w, h);
+  std::vector<CameraParams> inside;
+  for (const auto& r : readings)
+    for (const CameraParams& p : {r, halfTurnTwin(r)})
+      if (region.contains(viewCenter(p, w, h))) inside.push_back(p);
+  if (readings.size() == 1 && inside.size() == 2) return chooseNearTarget(readings[0], center, basis, w, h);
+  const CameraParams& chosen = inside.size() == 1 ? inside[0] : readings[0];
+  SymmetryChoice c{chosen, describeBoth(chosen, halfTurnTwin(chosen), w, h)};
   c.decision.basis = basis;
-  if (!in_a && !in_b) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "neither reading looks into x %.0f..%.0f, y %.0f..%.0f", region.x_min,
-                  region.x_max, region.y_min, region.y_max);
+  char buf[240];
+  if (inside.size() != 1) {
     c.decision.decided = false;
+    if (inside.empty())
+      std::snprintf(buf, sizeof buf, "no reading looks into x %.0f..%.0f, y %.0f..%.0f", region.x_min, region.x_max,
+                    region.y_min, region.y_max);
+    else
+      std::snprintf(buf, sizeof buf, "%zu readings that fit the lines equally well look into it", inside.size());
     c.decision.reason = buf;
+  } else if (readings.size() > 1) {
+    std::snprintf(buf, sizeof buf, " (the view looks the same in %zu poses; one looks into the region)",
+                  2 * readings.size());
+    c.decision.basis += buf;
   }
   return c;
 }
