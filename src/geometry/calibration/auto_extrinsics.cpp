@@ -80,6 +80,7 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
   const auto circle = circle_radius > 0 && !lines.empty()
                           ? findCentreCircle(obs, dist, lines, width, height)
                           : std::nullopt;
+  spdlog::debug("straight lines {}, circle {}", lines.size(), circle.has_value());
   if (lines.size() < 4 && !circle) {
     result.reason = "fewer than four straight field lines and no centre circle found";
     return result;

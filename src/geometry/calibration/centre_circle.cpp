@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
 
 namespace dv {
 
@@ -81,6 +82,7 @@ std::optional<ImageEllipse> findCentreCircle(const LineObservation& obs, const P
     if (std::max(stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT)) >= 30) comps.push_back(i);
   std::sort(comps.begin(), comps.end(),
             [&](int a, int b) { return stats.at<int>(a, cv::CC_STAT_AREA) > stats.at<int>(b, cv::CC_STAT_AREA); });
+  spdlog::debug("curved components: {} of {}", comps.size(), n - 1);
   if (comps.size() > 6) comps.resize(6);
   std::vector<std::vector<cv::Point2f>> comp_pts(comps.size());
   for (const auto& px : obs.pixels) {
@@ -91,13 +93,14 @@ std::optional<ImageEllipse> findCentreCircle(const LineObservation& obs, const P
     for (size_t k = 0; k < comps.size(); ++k)
       if (comps[k] == label) comp_pts[k].emplace_back(float(u.u), float(u.v));
   }
-  // One arc or two (the halfway line cuts the circle in halves).
+  // The halfway and centre lines cut the circle into up to four arcs: try
+  // every set of the largest arcs.
   std::optional<ImageEllipse> best;
   double best_score = 0;
-  for (size_t i = 0; i < comps.size(); ++i)
-    for (size_t j = i; j < comps.size(); ++j) {
-      std::vector<cv::Point2f> pts = comp_pts[i];
-      if (j != i) pts.insert(pts.end(), comp_pts[j].begin(), comp_pts[j].end());
+  for (unsigned set = 1; set < (1u << comps.size()); ++set) {
+      std::vector<cv::Point2f> pts;
+      for (size_t k = 0; k < comps.size(); ++k)
+        if (set & (1u << k)) pts.insert(pts.end(), comp_pts[k].begin(), comp_pts[k].end());
       if (pts.size() < 30) continue;
       const cv::RotatedRect r = cv::fitEllipseAMS(pts);
       ImageEllipse e;
@@ -106,7 +109,10 @@ std::optional<ImageEllipse> findCentreCircle(const LineObservation& obs, const P
       if (e.b > e.a) std::swap(e.a, e.b), e.angle += kPi / 2;
       if (!(e.b >= 15) || e.a > std::max(width, height) || e.b < 0.25 * e.a) continue;
       double coverage, inliers;
-      ellipseSupport(e, pts, 2.5, coverage, inliers);
+      // The pixels fill the painted line's width.
+      ellipseSupport(e, pts, obs.half_width_px + 1.5, coverage, inliers);
+      spdlog::debug("circle fit: {} px at ({:.0f}, {:.0f}) axes {:.0f} {:.0f}, coverage {:.2f}, inliers {:.2f}",
+                    pts.size(), e.center.x, e.center.y, e.a, e.b, coverage, inliers);
       if (coverage < 0.6 || inliers < 0.85) continue;
       e.pixels = int(pts.size());
       const double s = coverage * double(pts.size());
