@@ -120,8 +120,9 @@ PoseResult runPose(const PoseSpec& p, uint64_t seed) {
   spec.ball.position = {p.aim.x + 400, p.aim.y - 300, 21.5};
   spec.robots = placeRandomRobots(spec, 0, 4, 4, seed);
   const cv::Mat image = Renderer(spec).render(0, 0).image;
-  spdlog::debug("true camera at ({:.0f}, {:.0f}, {:.0f}), f {:.1f}", p.position.x, p.position.y, p.position.z,
-                cam.calib.focal_length);
+  spdlog::debug("true camera at ({:.0f}, {:.0f}, {:.0f}), f {:.1f}, k {:.4f}, pp ({:.1f}, {:.1f})", p.position.x,
+                p.position.y, p.position.z, cam.calib.focal_length, cam.calib.distortion, cam.calib.principal_point_x,
+                cam.calib.principal_point_y);
 
   CalibrationRequest req;
   req.camera_id = cam.calib.camera_id;

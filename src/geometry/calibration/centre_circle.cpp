@@ -111,8 +111,6 @@ std::optional<ImageEllipse> findCentreCircle(const LineObservation& obs, const P
       double coverage, inliers;
       // The pixels fill the painted line's width.
       ellipseSupport(e, pts, obs.half_width_px + 1.5, coverage, inliers);
-      spdlog::debug("circle fit: {} px at ({:.0f}, {:.0f}) axes {:.0f} {:.0f}, coverage {:.2f}, inliers {:.2f}",
-                    pts.size(), e.center.x, e.center.y, e.a, e.b, coverage, inliers);
       if (coverage < 0.6 || inliers < 0.85) continue;
       e.pixels = int(pts.size());
       const double s = coverage * double(pts.size());

@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "geometry/calibration/line_fit.h"
 
@@ -50,11 +52,16 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
     r = model.elements()[m.element].signedDistance(xy) / m.mm_per_px;
     return true;
   };
-  // Jacobian of the pixel distances, row by row.
-  Eigen::Matrix<double, kParams, kParams> info = Eigen::Matrix<double, kParams, kParams>::Zero();
-  std::vector<double> res;
+  // The measurements are the line centres, one per 16 px image cell and
+  // model line: the pixels of a cell spread across the painted width and
+  // are not independent, their mean is what the fit pins down.
+  struct Cell {
+    Eigen::Matrix<double, kParams, 1> row = Eigen::Matrix<double, kParams, 1>::Zero();
+    double r = 0;
+    int n = 0;
+  };
+  std::map<std::tuple<int, int, int>, Cell> cells;
   CameraParams plus = params, minus = params;
-  std::vector<Eigen::Matrix<double, kParams, 1>> rows;
   for (const auto& m : matches) {
     double r0;
     if (!residual(params, m, r0)) continue;
@@ -69,14 +76,22 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
       row[j] = (rp - rm) / (2 * h[j]);
     }
     if (!ok) continue;
-    res.push_back(std::abs(r0));
-    rows.push_back(row);
+    Cell& c = cells[{m.element, int(m.px.u / 16), int(m.px.v / 16)}];
+    c.row += row, c.r += r0, ++c.n;
   }
-  if (rows.size() < 50) return std::nullopt;
-  // Pixel noise from the residuals' spread (median absolute value), at
-  // least a tenth of a pixel: line centres are not found better than that.
+  std::vector<double> res;
+  std::vector<Eigen::Matrix<double, kParams, 1>> rows;
+  for (auto& [key, c] : cells) {
+    if (c.n < 3) continue;
+    res.push_back(std::abs(c.r / c.n));
+    rows.push_back(c.row / c.n);
+  }
+  if (rows.size() < 20) return std::nullopt;
+  // Noise of a line centre from the spread of the cells' mean residuals,
+  // at least 0.05 px.
   std::nth_element(res.begin(), res.begin() + res.size() / 2, res.end());
-  const double sigma = std::max(0.1, 1.4826 * res[res.size() / 2]);
+  const double sigma = std::max(0.05, 1.4826 * res[res.size() / 2]);
+  Eigen::Matrix<double, kParams, kParams> info = Eigen::Matrix<double, kParams, kParams>::Zero();
   for (const auto& row : rows) info += row * row.transpose() / (sigma * sigma);
   const double pp_w = 1 / (o.principal_point_sigma_px * o.principal_point_sigma_px);
   info(1, 1) += pp_w, info(2, 2) += pp_w;
