@@ -85,12 +85,14 @@ std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool h
 }
 
 // A pose the lines fit but do not pin down (too little of the field in
-// view) is refused rather than written: its predicted field error (one
-// sigma, from the line centres' scatter) must stay within the millimetre
-// the calibration promises. On the pose sweep the error found ran between
-// half and twice the prediction where the view pins the pose, and well
-// above 1 mm where it predicts more.
-constexpr double kMaxPredictedErrorMm = 1.0;
+// view) is refused rather than written. Its predicted field error (one
+// sigma, from the line centres' scatter) must stay within half the
+// millimetre the calibration promises on the carpet, where on the pose
+// sweep the error found ran up to 2.7 times the prediction (corner views),
+// and within the millimetre at robot height, where the prediction adds the
+// height's coupling to the tilt and runs above the error found.
+constexpr double kMaxPredictedCarpetErrorMm = 0.5;
+constexpr double kMaxPredicted150ErrorMm = 1.0;
 
 std::optional<std::string> poorlyPinned(CalibrationOutcome& r, const LineObservation& obs, const FieldLineModel& model,
                                         const FieldModel& field, const CalibrationRequest& req, int w, int h) {
@@ -103,8 +105,7 @@ std::optional<std::string> poorlyPinned(CalibrationOutcome& r, const LineObserva
   const auto& e = *r.predicted_error;
   spdlog::debug("predicted field error {:.3f} mm at z=0, {:.3f} mm at z=150 (noise {:.2f} px, {} px)", e.at_carpet_mm,
                 e.at_150_mm, e.noise_px, e.pixels_used);
-  const double worst = std::max(e.at_carpet_mm, e.at_150_mm);
-  if (worst <= kMaxPredictedErrorMm) return std::nullopt;
+  if (e.at_carpet_mm <= kMaxPredictedCarpetErrorMm && e.at_150_mm <= kMaxPredicted150ErrorMm) return std::nullopt;
   char buf[240];
   std::snprintf(buf, sizeof buf,
                 "the lines in view do not pin the pose down (predicted field error %.2f mm at z=0, %.2f mm at "

@@ -93,8 +93,10 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
   const double sigma = std::max(0.05, 1.4826 * res[res.size() / 2]);
   Eigen::Matrix<double, kParams, kParams> info = Eigen::Matrix<double, kParams, kParams>::Zero();
   for (const auto& row : rows) info += row * row.transpose() / (sigma * sigma);
-  const double pp_w = 1 / (o.principal_point_sigma_px * o.principal_point_sigma_px);
-  info(1, 1) += pp_w, info(2, 2) += pp_w;
+  if (o.principal_point_sigma_px > 0) {
+    const double pp_w = 1 / (o.principal_point_sigma_px * o.principal_point_sigma_px);
+    info(1, 1) += pp_w, info(2, 2) += pp_w;
+  }
   if (o.height_fixed) info(9, 9) += 1e12;
   // Scale to unit diagonal before inverting: the parameters differ by
   // orders of magnitude.

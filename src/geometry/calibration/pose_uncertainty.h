@@ -25,7 +25,9 @@ struct PredictedFieldError {
 
 struct PoseUncertaintyOptions {
   bool height_fixed = false;
-  double principal_point_sigma_px = 30;  // the line fit's prior
+  // A prior on the principal point, px (1 sigma); none by default: the
+  // line fit's prior keeps it from wandering but is no measurement.
+  double principal_point_sigma_px = 0;
   int max_pixels = 4000;
   int width = 0, height = 0;
 };
