@@ -283,7 +283,10 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   // The symmetry choice has placed the view in the region: no region gate.
   finish(r, obs, field, std::nullopt);
   if (height_problem) r.problem = height_problem;
-  if (!r.problem) r.problem = poorlyPinned(r, obs, model, field, req, w, h);
+  if (!r.problem) {
+    auto unpinned = poorlyPinned(r, obs, model, field, req, w, h);
+    if (req.refuse_unpinned) r.problem = std::move(unpinned);
+  }
   if (r.problem) refuse(*r.problem);
   return r;
 }

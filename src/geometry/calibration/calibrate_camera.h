@@ -34,6 +34,10 @@ struct CalibrationRequest {
   // settles the field's symmetry (and says so).
   ViewHint hint;
   std::optional<double> camera_height_mm;
+  // Automatic mode refuses a pose whose predicted field error is over the
+  // bar; a joint refinement over several cameras that judges the seams
+  // itself may take such a pose as its start (the prediction is reported).
+  bool refuse_unpinned = true;
   std::string source = "image";  // names the image in messages
 };
 
