@@ -4,7 +4,7 @@
 # exit 1 if any finds a crash, leak, timeout or sanitizer report).
 # TARGET is a fuzz/fuzz_<TARGET>.cpp name (geometry_json, geometry_yaml,
 # site_config, scene_yaml, ssl_log, detection_file, geometry_datagram,
-# referee_datagram, image_decode). Builds the target in build-fuzz (clang 14,
+# referee_datagram, image_decode, camera_buffer). Builds the target in build-fuzz (clang 14,
 # ASan + UBSan + libFuzzer, see sanitizer_build.sh) and fuzzes it for SECONDS
 # on a working copy of fuzz/corpus/TARGET (new inputs go to
 # build-fuzz/fuzz/corpus/TARGET; crashes to build-fuzz/fuzz/artifacts/).

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Soak: scripts/soak.sh MINUTES [OUT_DIR]  (default OUT_DIR build/soak)
-# Runs `dotvision serve config/site.example.yaml` (two synthetic cameras) with
+# Runs `dotvision serve` on config/site.example.yaml (two synthetic cameras),
+# their frame rate set to the league's 72 fps (SOAK_FPS to change it), with
 # the console polled every second (/api/status, /api/detections, a camera
 # snapshot) and samples the process every 10 s into OUT_DIR/soak.csv: RSS
 # (VmRSS), open file descriptors, and per camera the input rate over the
@@ -32,7 +33,9 @@ rm -f "$status" "$fails"
 port=$((20000 + RANDOM % 20000))
 url=http://127.0.0.1:$port
 
-"$bin" serve config/site.example.yaml --http "127.0.0.1:$port" --status-file "$status" >"$log" 2>&1 &
+site=$out/site.yaml
+sed -E "s/^( *fps: *)[0-9.]+/\1${SOAK_FPS:-72}/" config/site.example.yaml >"$site"
+"$bin" serve "$site" --http "127.0.0.1:$port" --status-file "$status" >"$log" 2>&1 &
 pid=$!
 poller=
 cleanup() {

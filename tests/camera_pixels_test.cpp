@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "camera/genicam_pixels.h"
@@ -126,6 +127,19 @@ TEST(GenicamPixelsTest, ShortBufferIsRejectedAndTheOutputBufferIsReused) {
   const uint8_t* first = out.ptr<uint8_t>();
   ASSERT_TRUE(convertGenicamImage(bytes.data(), bytes.size(), 8, 8, layout, out));
   EXPECT_EQ(out.ptr<uint8_t>(), first) << "no new allocation for the same size";
+}
+
+// A buffer's leader may claim any width and height. 859019674 x 2147418113
+// pixels of 10p need 2^64 + 4 bits: computed in 64 bits that wrapped to one
+// byte, so a 16-byte payload passed the size check and was read as a huge image.
+TEST(GenicamPixelsTest, AClaimedSizeWhoseByteCountWouldWrapIsRefused) {
+  const auto layout = *genicamPixelLayout(kBayerRG10p);
+  EXPECT_EQ(genicamImageBytes(layout, 859019674, 2147418113), std::numeric_limits<size_t>::max());
+  std::vector<uint8_t> bytes(16);
+  cv::Mat out;
+  EXPECT_FALSE(convertGenicamImage(bytes.data(), bytes.size(), 859019674, 2147418113, layout, out));
+  EXPECT_FALSE(convertGenicamImage(bytes.data(), bytes.size(), -4, -4, layout, out));
+  EXPECT_EQ(genicamImageBytes(layout, -4, 4), 0u);
 }
 
 }  // namespace

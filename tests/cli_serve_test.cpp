@@ -16,6 +16,7 @@
 
 #include "dotvision/ssl_referee.pb.h"
 #include "dotvision/ssl_wrapper.pb.h"
+#include "geometry/geometry_io.h"
 #include "geometry/proto_json.h"
 #include "net/multicast.h"
 #include "cli_process.h"
@@ -265,6 +266,68 @@ TEST_F(ServeLive, ABadCameraIsReportedAndTheOthersRunWithTheGeometryPublished) {
   EXPECT_NE(log.find("camera 1 (" + config_ + ":"), std::string::npos) << log;  // names the file and line
   EXPECT_NE(log.find("not started"), std::string::npos) << log;
   EXPECT_NE(log.find("running 1 camera(s)"), std::string::npos) << log;
+}
+
+// The geometry file changes under a running serve to a camera of another
+// size: SIGHUP rebuilds the camera's tables for it, the frames that no longer
+// fit are skipped and counted without a crash, and the old file brought back
+// brings the detections back.
+TEST_F(ServeLive, AGeometryFileWithAnotherCameraSizeIsTakenOnSighupWithoutACrash) {
+  std::string out;
+  ASSERT_EQ(runCli("synth " + dir_.file("scene.yaml") + " --out " + dir_.file("scene_out"), out), 0) << out;
+  const std::string geometry_file = dir_.file("geometry.json");
+  const Geometry original = loadGeometry(dir_.file("scene_out/geometry.json"));
+  saveGeometry(original, geometry_file);
+  std::ostringstream cfg;
+  cfg << "cameras:\n  - {id: 0, source: \"synthetic://" << dir_.file("scene.yaml") << "/0\", threads: 1, backend: cpu}\n"
+      << "network:\n  vision: {group: 224.5.23.2, port: " << vision_port_ << ", interface: 127.0.0.1}\n"
+      << "  geometry: {source: file, file: " << geometry_file << "}\n"
+      << "  referee: {enabled: false}\n"
+      << "status_interval: 0\n";
+  std::ofstream(config_) << cfg.str();
+  MulticastReceiver rx("224.5.23.2", static_cast<uint16_t>(vision_port_), "127.0.0.1");
+  auto detectionWithin = [&](double seconds) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    std::string payload;
+    while (std::chrono::steady_clock::now() < until) {
+      ssl::SSL_WrapperPacket p;
+      if (rx.receive(0.2, payload) && p.ParseFromString(payload) && p.has_detection()) return true;
+    }
+    return false;
+  };
+  auto logHas = [&](const std::string& text) {
+    for (int i = 0; i < 200; ++i, std::this_thread::sleep_for(std::chrono::milliseconds(100)))
+      if (readAll(dir_.file("serve.log")).find(text) != std::string::npos) return true;
+    return false;
+  };
+  start();
+  ASSERT_TRUE(detectionWithin(60)) << readAll(dir_.file("serve.log"));
+
+  // The same view from a camera of twice the resolution.
+  Geometry bigger = original;
+  CameraCalibration& c = bigger.cameras.at(0);
+  c.image_width *= 2;
+  c.image_height *= 2;
+  c.focal_length *= 2;
+  c.principal_point_x = 2 * c.principal_point_x + 0.5;
+  c.principal_point_y = 2 * c.principal_point_y + 0.5;
+  saveGeometry(bigger, geometry_file);
+  ::kill(pid_, SIGHUP);
+  EXPECT_TRUE(logHas("camera 0: new calibration from " + geometry_file + " (2448 x 2048 px)")) << readAll(dir_.file("serve.log"));
+  EXPECT_TRUE(logHas("every such frame is skipped and counted")) << readAll(dir_.file("serve.log"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  while (rx.receive(0.05, out)) {
+  }
+  EXPECT_FALSE(detectionWithin(1.0)) << "1224 x 1024 frames measured through a 2448 x 2048 calibration";
+  ASSERT_EQ(::kill(pid_, 0), 0) << "serve is gone";
+
+  saveGeometry(original, geometry_file);
+  ::kill(pid_, SIGHUP);
+  EXPECT_TRUE(logHas("(1224 x 1024 px)")) << readAll(dir_.file("serve.log"));
+  EXPECT_TRUE(detectionWithin(30)) << readAll(dir_.file("serve.log"));
+  ::kill(pid_, SIGTERM);
+  EXPECT_EQ(waitExit(pid_), 0);
+  pid_ = -1;
 }
 
 }  // namespace

@@ -8,7 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
+#include <thread>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -304,6 +309,52 @@ TEST_F(ConsoleApi, ChangesNeedTheTokenAndGoTheReloadWay) {
   const std::string saved = serve_->configText();
   EXPECT_NE(saved.find("default: 135   # the league's usual"), std::string::npos) << saved;
   EXPECT_TRUE(ConsoleServe::waitFor([] { return heightInUse() == 135; }));
+}
+
+// Every thread of serve with its name and nice value, from /proc.
+std::multimap<std::string, int> threadNiceByName(pid_t pid) {
+  std::multimap<std::string, int> out;
+  const std::string dir = "/proc/" + std::to_string(pid) + "/task";
+  for (const auto& task : std::filesystem::directory_iterator(dir)) {
+    std::ifstream comm(task.path() / "comm"), stat(task.path() / "stat");
+    std::string name, text;
+    std::getline(comm, name);
+    std::getline(stat, text);
+    // Field 19 is the nice value; fields start after the ")" that ends the name.
+    std::istringstream rest(text.substr(text.rfind(')') + 2));
+    std::string field;
+    for (int i = 3; i <= 19 && rest >> field; ++i) {
+    }
+    out.emplace(name, std::stoi(field));
+  }
+  return out;
+}
+
+TEST_F(ConsoleApi, ConsoleThreadsGiveWayToTheCameras) {
+  // Requests until an HTTP thread has served one and both cameras run (a
+  // loaded machine may take a while).
+  std::multimap<std::string, int> threads;
+  for (int i = 0; i < 60; ++i) {
+    getJson("/api/status");
+    threads = threadNiceByName(serve_->pid());
+    int d = 0;
+    for (const auto& t : threads) d += t.first.rfind("detect ", 0) == 0;
+    if (threads.count("console") > 0 && d == 2) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  int console = 0, detect = 0;
+  for (const auto& [name, nice] : threads) {
+    if (name == "console") {
+      ++console;
+      EXPECT_EQ(nice, 10) << "an HTTP thread of the console";
+    }
+    if (name.rfind("detect ", 0) == 0) {
+      ++detect;
+      EXPECT_EQ(nice, 0) << name;
+    }
+  }
+  EXPECT_GE(console, 1);
+  EXPECT_EQ(detect, 2) << "one detection thread per camera";
 }
 
 }  // namespace

@@ -98,6 +98,7 @@ frames: 1
   std::string configText() const { return read(config_); }
   const std::string& configPath() const { return config_; }
   int port() const { return port_; }
+  pid_t pid() const { return pid_; }
   const std::string& printedToken() const { return printed_token_; }
   std::string url(const std::string& path) const { return "http://127.0.0.1:" + std::to_string(port_) + path; }
   const TempDir& dir() const { return dir_; }

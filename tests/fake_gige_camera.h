@@ -127,6 +127,15 @@ class FakeGigeCamera {
     return ok;
   }
 
+  // Drops this share of the stream's packets on the way out (Aravis's own
+  // "gvsp-lost-ratio", per thousand), as a congested link would.
+  void losePackets(double per_thousand) {
+    GParamSpec* p = g_object_class_find_property(G_OBJECT_GET_CLASS(camera_), "gvsp-lost-ratio");
+    if (!p) return;
+    if (G_PARAM_SPEC_VALUE_TYPE(p) == G_TYPE_DOUBLE) g_object_set(camera_, "gvsp-lost-ratio", per_thousand / 1000.0, nullptr);
+    else g_object_set(camera_, "gvsp-lost-ratio", static_cast<guint>(per_thousand), nullptr);
+  }
+
   // The camera's registers, read and written in memory (not over the network).
   uint32_t reg(uint32_t address) const {
     guint32 v = 0;

@@ -59,6 +59,20 @@ const std::vector<Condition>& conditions() {
       {"yellow_amber", [](SceneSpec& s, int) { s.materials.yellow = {250, 165, 0}; }},
       {"blue_sky", [](SceneSpec& s, int) { s.materials.blue = {90, 175, 245}; }},
       {"blue_navy", [](SceneSpec& s, int) { s.materials.blue = {20, 30, 125}; }},
+      // --- what is neither robot nor ball: hands placing robots (light,
+      // medium and dark skin, the forearm too), a shoe by the wall in the
+      // ball's own orange and a brown one behind the goal line
+      {"hands_and_shoes", [](SceneSpec& s, int) {
+         auto box = [&](FieldPoint lo, FieldPoint hi, Rgb c) { s.clutter.push_back({lo, hi, c}); };
+         box({-3340, 1710, 150}, {-3260, 1890, 190}, {225, 180, 150});  // hand
+         box({-3335, 1890, 185}, {-3265, 2190, 240}, {230, 185, 155});  // forearm
+         box({-2740, -690, 160}, {-2660, -510, 200}, {190, 130, 95});
+         box({-1240, -1590, 150}, {-1160, -1410, 190}, {110, 70, 50});
+         box({-1235, -1410, 185}, {-1165, -1110, 240}, {105, 68, 48});
+         box({-2030, 1170, 150}, {-1970, 1230, 210}, {225, 175, 140});  // a fist, nearly ball-sized
+         box({-3800, 3040, 0}, {-3520, 3140, 90}, {235, 110, 35});  // orange shoe
+         box({-4760, 1500, 0}, {-4660, 1780, 90}, {120, 75, 45});   // brown shoe
+       }},
       // --- ball shades
       {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
       {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},

@@ -92,10 +92,12 @@ inline BayerPattern pipelineBayer(const SceneSpec& spec) {
 }
 
 // Runs `frames` frames of `spec` (camera 0). `alone`: every frame is
-// detected without history (reset before each).
-inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s) {
+// detected without history (reset before each). `detect_with`: the
+// calibration the processor uses, when not the one rendered (a fit of it).
+inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
+                  const CameraCalibration* detect_with = nullptr) {
   Renderer renderer(spec);
-  const CameraModel cam(spec.cameras[0].calib);
+  const CameraModel cam(detect_with ? *detect_with : spec.cameras[0].calib);
   PipelineOptions popt;
   popt.bayer = pipelineBayer(spec);
   CpuPipeline pipeline(cam, spec.field, popt);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/site_config.h"
+#include "app/synthetic_camera.h"
 #include "core/error.h"
 #include "synth/scene.h"
 #include "temp_dir.h"
@@ -403,6 +404,18 @@ robot_heights: {blue: 150, teams: {ER-Force: 145}}
   EXPECT_NE(text.find("console: 127.0.0.1:8080 (token random, printed at start)\n"), std::string::npos) << text;
   const SiteConfig off = parseSiteConfig("cameras: [{id: 0, source: a.png}]\nconsole: {http: \"\"}\n", "site.yaml");
   EXPECT_NE(describeSiteConfig(off).find("console: off\n"), std::string::npos);
+}
+
+// `fps` paces a synthetic camera too (the soak runs the league's 72 fps on
+// the example's cameras); without it the camera keeps its scene's rate.
+TEST(SiteConfigParse, FpsSetsASyntheticCamerasRate) {
+  const SiteConfig given = parseSiteConfig("cameras:\n  - {id: 0, source: synthetic://default/0, fps: 72}\n", "s");
+  EXPECT_TRUE(given.cameras[0].fps_given);
+  EXPECT_NE(SyntheticCamera(given.cameras[0].source, given.cameras[0].fps).describe().find("looped at 72 fps"),
+            std::string::npos);
+  const SiteConfig plain = parseSiteConfig("cameras:\n  - {id: 0, source: synthetic://default/0}\n", "s");
+  EXPECT_FALSE(plain.cameras[0].fps_given);
+  EXPECT_NE(SyntheticCamera(plain.cameras[0].source).describe().find("looped at 60 fps"), std::string::npos);
 }
 
 }  // namespace

@@ -70,6 +70,18 @@ TEST(SynthScene, MinimalSceneLoads) {
   EXPECT_NEAR(px->v, 63.5, 1e-9);
 }
 
+// A camera may carry lens terms beyond the league's model; a wrong count is named.
+TEST(SynthScene, CameraLensTerms) {
+  std::string text = kMinimal;
+  const std::string cam = "focal_length: 300,";
+  text.insert(text.find(cam) + cam.size(), " lens: [-0.004, 0.0001, 0.0006, -0.0004],");
+  const SceneSpec s = loadScene(writeTemp("lens.yaml", text));
+  EXPECT_EQ(s.cameras[0].calib.lens, (LensTerms{-0.004, 0.0001, 0.0006, -0.0004}));
+  std::string bad = kMinimal;
+  bad.insert(bad.find(cam) + cam.size(), " lens: [-0.004, 0],");
+  EXPECT_NE(loadError("bad_lens.yaml", bad).find("cameras[0].lens"), std::string::npos) << loadError("bad_lens.yaml", bad);
+}
+
 TEST(SynthScene, MalformedYamlNamesFileLineAndColumn) {
   const std::string msg = loadError("malformed.yaml", "name: x\ncameras: [\n  {id: 0,\n");
   EXPECT_NE(msg.find("malformed.yaml"), std::string::npos) << msg;
@@ -394,6 +406,28 @@ TEST(SynthScene, CliRendersAScene) {
   EXPECT_FALSE(fs::exists(out / "frame_3_00001.pgm"));  // --frames 1
   EXPECT_TRUE(fs::exists(out / "geometry.json"));
   EXPECT_TRUE(fs::exists(out / "truth.jsonl"));
+}
+
+// Clutter (a hand, a shoe): a box in the scene that is seen, robots placed
+// clear of it, and a box that is not one refused with its place.
+TEST(SynthScene, ClutterBoxesAreSeenKeptClearOfAndChecked) {
+  const std::string head = "cameras: [{id: 0, position: [0, 0, 4000], look_at: [0, 0, 0], focal_length: 60, size: [64, 48]}]\n";
+  const SceneSpec s = sceneFromYaml(head + "clutter: [{min: [-200, -200, 0], max: [200, 200, 300], color: [230, 180, 150]}]\n", "t");
+  ASSERT_EQ(s.clutter.size(), 1u);
+  SceneSpec bare = s;
+  bare.clutter.clear();
+  const cv::Mat with = Renderer(s).render(0, 0).image, without = Renderer(bare).render(0, 0).image;
+  EXPECT_GT(cv::norm(with, without, cv::NORM_L1), 1000) << "the box is in the camera's view";
+  for (const SceneRobot& r : placeRandomRobots(s, 0, 3, 3, 5, 200, 2))
+    EXPECT_GT(std::max(std::abs(r.position.x), std::abs(r.position.y)), 200 + 100 + 30 - 1) << "a robot under the box";
+  try {
+    sceneFromYaml(head + "clutter:\n  - {min: [0, 0, 0], max: [10, -10, 5], color: [1, 2, 3]}\n", "t");
+    ADD_FAILURE() << "an inside-out box accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("clutter[0]"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(sceneFromYaml(head + "clutter: [{min: [0, 0, 0], max: [1, 1, 1]}]\n", "t"), InputError);
+  EXPECT_THROW(sceneFromYaml(head + "clutter: [{min: [0, 0, 0], max: [1, 1, 1], color: [1, 2, 3], size: 2}]\n", "t"), InputError);
 }
 
 }  // namespace

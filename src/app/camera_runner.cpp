@@ -59,6 +59,7 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
       pending_calibration_.reset();
       processor_.reset();   // rebuilt below with the new calibration
       warmed_up_ = false;   // that rebuild is a start-up cost, not a latency
+      refusal_logged_ = false;  // a new calibration may refuse what the old one took
     }
     if (pending_options_) {
       options_.detector = *pending_options_;
@@ -106,15 +107,16 @@ void CameraRunner::onFrame(Frame& frame, double t_taken) {
   }
   std::string why;
   if (!processor_->process(frame, detections_, why)) {
-    // Wrong size or format: counted; the first of a run is reported.
-    uint64_t n;
+    // Wrong size or format: counted; the first of a run, and the first
+    // under each new calibration, is reported.
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      n = ++rejected_frames_;
-      if (n == 1) rejected_why_ = frame.name + ": " + why;
+      if (++rejected_frames_ == 1) rejected_why_ = frame.name + ": " + why;
     }
-    if (n == 1)
-      log_("camera " + std::to_string(calibration_.camera_id) + ": skipped " + frame.name + ": " + why);
+    if (!refusal_logged_)
+      log_("camera " + std::to_string(calibration_.camera_id) + ": skipped " + frame.name + ": " + why +
+           " (every such frame is skipped and counted)");
+    refusal_logged_ = true;
     return;
   }
   FrameStamp stamp;

@@ -81,6 +81,7 @@ class CameraRunner {
   bool warmed_up_ = false;
   uint64_t rejected_frames_ = 0;  // guarded by mutex_ (status() reads it)
   std::string rejected_why_;      // the first refusal, for the status
+  bool refusal_logged_ = false;   // processing thread only
 
   mutable std::mutex mutex_;  // guards what status() reads
   std::optional<DetectorOptions> pending_options_;

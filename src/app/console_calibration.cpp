@@ -17,7 +17,7 @@ CameraCalibration asPublished(const FieldModel& field, const CameraCalibration& 
   Geometry g;
   g.field = field;
   g.cameras = {c};
-  return geometryFromProto(toProto(g), "calibration").cameras.front();
+  return withWirePrecision(g, "calibration").cameras.front();
 }
 
 }  // namespace

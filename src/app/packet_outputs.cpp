@@ -1,7 +1,9 @@
 #include "app/packet_outputs.h"
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 
 #include "core/error.h"
 #include "geometry/proto_json.h"
@@ -58,7 +60,13 @@ void PacketOutputs::detection(const ssl::SSL_WrapperPacket& packet) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
   if (publisher_) {
-    if (!publisher_->publishDetection(packet.detection())) ++send_failures_;
+    const uint64_t errors_before = publisher_->sender().errorCount();
+    if (publisher_->publishDetection(packet.detection())) {
+      if (unsent_since_failure_ > 0) notePublishingResumed();
+    } else {
+      ++send_failures_;
+      if (publisher_->sender().errorCount() != errors_before) noteSendError(publisher_->sender().lastErrno());
+    }
     publisher_->publishGeometryIfDue(monotonicSeconds());
   }
   if (log_) {
@@ -122,6 +130,22 @@ void PacketOutputs::finish() {
     jsonl_.close();
     if (jsonl_.fail()) throw InputError(o_.jsonl, "write failed at close");
   }
+}
+
+void PacketOutputs::noteSendError(int error) {
+  // A full socket buffer drops one datagram, as the network would: counted,
+  // not a change of state. Anything else (no route, the interface gone)
+  // fails every frame until it comes back: said once, and once when it does.
+  if (error == EAGAIN || error == EWOULDBLOCK || error == ENOBUFS) return;
+  if (unsent_since_failure_++ == 0)
+    std::fprintf(stderr, "%s: warning: cannot publish on %s: %s; detection goes on, every frame is tried\n",
+                 o_.who.c_str(), publisher_->sender().name().c_str(), std::strerror(error));
+}
+
+void PacketOutputs::notePublishingResumed() {
+  std::fprintf(stderr, "%s: publishing on %s again after %llu frame(s) not sent\n", o_.who.c_str(),
+               publisher_->sender().name().c_str(), static_cast<unsigned long long>(unsent_since_failure_));
+  unsent_since_failure_ = 0;
 }
 
 void PacketOutputs::stopRecording(const std::string& why) {

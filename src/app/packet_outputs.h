@@ -61,6 +61,9 @@ class PacketOutputs {
   std::ofstream jsonl_;
   std::string buffer_;
   void stopRecording(const std::string& why);  // with mutex_ held
+  void noteSendError(int error);               // with mutex_ held
+  void notePublishingResumed();                // with mutex_ held
+  uint64_t unsent_since_failure_ = 0;          // frames not sent since the network failed
   std::string record_failure_;
   uint64_t send_failures_ = 0;
   uint64_t jsonl_lines_ = 0;

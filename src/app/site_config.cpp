@@ -92,7 +92,7 @@ class SiteReader {
                  if (k == "full_search") cam.full_search = y_.boolean(v, key);
                  if (k == "backend") cam.backend = y_.choice(v, key, {"auto", "cpu", "opencl"});
                  if (k == "threads") cam.threads = int(y_.integer(v, key, 0, 256));
-                 if (k == "fps") cam.fps = y_.number(v, key, 0, 1000, "frames/s", true);
+                 if (k == "fps") cam.fps = y_.number(v, key, 0, 1000, "frames/s", true), cam.fps_given = true;
                  if (k == "realtime") cam.realtime = y_.boolean(v, key);
                  if (k == "loop") cam.loop = y_.boolean(v, key);
                });

@@ -24,7 +24,8 @@ struct SiteCamera {
   bool full_search = false;
   std::string backend = "auto";         // auto | cpu | opencl
   int threads = 0;                      // pipeline threads for this camera; 0: an even share of the cores
-  double fps = 60;                      // files and videos: frame spacing for image sequences
+  double fps = 60;                      // files and videos: frame spacing for image sequences; synthetic: the camera's rate
+  bool fps_given = false;               // fps was in the file (a synthetic camera keeps its scene's rate otherwise)
   bool realtime = true;                 // files and videos: paced at their own rate
   bool loop = true;                     // files, videos, synthetic: start over at the end
   int line = 0;                         // where in the file this camera is (for messages)

@@ -17,12 +17,16 @@
 namespace dv::app {
 
 namespace {
+
+// As often as the publisher repeats the geometry (SSL-Vision: 3 s), so a
+// restarted publisher has every camera back before its second publication.
+constexpr auto kCalibrationResendInterval = std::chrono::seconds(3);
 constexpr size_t kRawRingBytes = size_t{1} << 30;  // per camera: 10 s of 1224 x 1024, 3.4 s of 2448 x 2048 at 60 fps
 
 std::string cameraName(const SiteCamera& c) { return "camera " + std::to_string(c.id); }
 
 std::unique_ptr<CameraSource> openSiteSource(const SiteCamera& cam, std::vector<std::string>& report) {
-  if (isSyntheticSpec(cam.source)) return std::make_unique<SyntheticCamera>(cam.source);
+  if (isSyntheticSpec(cam.source)) return std::make_unique<SyntheticCamera>(cam.source, cam.fps_given ? cam.fps : 0);
   CameraSourceOptions so;
   so.files.fps = cam.fps;
   so.files.bayer = bayerFormatFromName(cam.bayer, "camera " + std::to_string(cam.id) + " bayer");
@@ -94,7 +98,7 @@ SiteRuntime::SiteRuntime(const SiteConfig& config, LogFn log) : config_(config),
   }
   // What the cameras use is what is published (and written to a raw dump):
   // the protocol's single-precision floats, so replays match to the bit.
-  geometry_ = geometryFromProto(toProto(geometry_), "geometry");
+  geometry_ = withWirePrecision(geometry_, "geometry");
   if (net.geometry == "publish") {
     GeometryPublisherOptions po;
     po.group = net.vision_group;
@@ -238,6 +242,17 @@ void SiteRuntime::setReferee(const RefereeSnapshot& referee) {
   for (auto& r : runners_) r->setDetectorOptions(d);
 }
 
+void SiteRuntime::tick() {
+  outputs_->tick();
+  std::lock_guard<std::mutex> lock(sent_mutex_);
+  if (sent_.cameras.empty() || std::chrono::steady_clock::now() < sent_.next) return;
+  sent_.next = std::chrono::steady_clock::now() + kCalibrationResendInterval;
+  try {
+    CalibrationSender(sent_.addr, sent_.port).send(geometry_.field, sent_.cameras);
+  } catch (const InputError&) {  // the address was good when it was first sent to
+  }
+}
+
 std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c, const std::string& publisher) {
   const std::string name = "camera " + std::to_string(c.camera_id);
   auto runner = std::find_if(runners_.begin(), runners_.end(), [&](const auto& r) { return r->cameraId() == c.camera_id; });
@@ -256,12 +271,57 @@ std::vector<std::string> SiteRuntime::setCalibration(const CameraCalibration& c,
   } else {
     return notes;
   }
+  {
+    std::lock_guard<std::mutex> lock(sent_mutex_);
+    if (sent_.addr != addr || sent_.port != port) sent_.cameras.clear();
+    sent_.addr = addr;
+    sent_.port = port;
+    std::erase_if(sent_.cameras, [&](const CameraCalibration& s) { return s.camera_id == c.camera_id; });
+    sent_.cameras.push_back(c);
+    sent_.next = std::chrono::steady_clock::now() + kCalibrationResendInterval;
+  }
   CalibrationSender sender(addr, port);
   if (sender.send(geometry_.field, {c}))
     notes.push_back("sent to the geometry publisher at " + addr + ":" + std::to_string(port));
   else
     notes.push_back("could not send it to the geometry publisher at " + addr + ":" + std::to_string(port));
   return notes;
+}
+
+// The geometry file is read again on each reload: a camera whose
+// calibration changed (another lens, a camera of another size) gets it as a
+// console-accepted one does; frames that no longer fit it are then skipped
+// and counted. A file that does not load keeps what runs.
+void SiteRuntime::reloadGeometry(const SiteConfig& next, std::vector<std::string>& notes) {
+  const std::string& mode = config_.network.geometry;
+  if (mode != "file" && mode != "publish") return;
+  if (next.network.geometry != mode || next.network.geometry_file != config_.network.geometry_file) {
+    notes.push_back("geometry source or file changed: restart serve to use it");
+    return;
+  }
+  const std::string& file = config_.network.geometry_file;
+  Geometry g;
+  try {
+    g = geometryFromProto(toProto(loadGeometry(file)), file);
+  } catch (const std::exception& e) {
+    notes.push_back(std::string("geometry not reloaded, the running one stays: ") + e.what());
+    return;
+  }
+  if (toProto(g.field).SerializeAsString() != toProto(geometry_.field).SerializeAsString())
+    notes.push_back(file + ": the field changed: restart serve to use it");
+  for (auto& r : runners_) {
+    const uint32_t id = r->cameraId();
+    const CameraCalibration* now = geometry_.camera(id);
+    const CameraCalibration* c = g.camera(id);
+    const std::string name = "camera " + std::to_string(id);
+    if (!c) {
+      notes.push_back(name + ": not in " + file + "; it keeps its calibration");
+    } else if (!now || !(*c == *now)) {
+      notes.push_back(name + ": new calibration from " + file + " (" + std::to_string(c->image_width) + " x " +
+                      std::to_string(c->image_height) + " px)");
+      for (std::string& n : setCalibration(*c, "")) notes.push_back(std::move(n));
+    }
+  }
 }
 
 std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
@@ -312,6 +372,7 @@ std::vector<std::string> SiteRuntime::reload(const SiteConfig& next) {
       notes.push_back(std::string("network target not changed: ") + e.what());
     }
   }
+  reloadGeometry(next, notes);
   char heights[96];
   std::snprintf(heights, sizeof heights, "yellow %.1f mm, blue %.1f mm", current_heights_.yellow_mm,
                 current_heights_.blue_mm);

@@ -5,11 +5,14 @@
 // the in-process geometry publisher or the network), and the robot heights
 // from the config's team table and the game controller's team names.
 // reload() takes a new, validated config: detector options, robot heights,
-// camera settings and network targets change in place, tracks stay;
+// camera settings, network targets and the geometry file's calibrations
+// change in place, tracks stay;
 // changes that need a restart (cameras added, removed or moved to another
 // source) are named and not applied.
 #include <atomic>
+#include <chrono>
 #include <memory>
+#include <mutex>
 #include <thread>
 #include <string>
 #include <vector>
@@ -46,7 +49,11 @@ class SiteRuntime : public ConsoleHost {
   // The game controller's teams changed: new heights from the next frame
   // (unknown team names are logged once each).
   void setReferee(const RefereeSnapshot& referee);
-  void tick() { outputs_->tick(); }
+  // From the main loop, often: the geometry repeats when due, and the
+  // calibrations accepted here are sent again to an external geometry
+  // publisher every few seconds, so a publisher that restarts from its file
+  // learns them back while the processors never stop using them.
+  void tick();
   // A new calibration for camera c.camera_id (accepted on the console): its
   // processor is rebuilt with it at the next frame and the published
   // geometry changes. With an external geometry publisher (network.geometry
@@ -69,6 +76,7 @@ class SiteRuntime : public ConsoleHost {
   DetectorOptions detectorOptions() const;
   void rebuildHeights();  // heights_ from config_.robot_heights, then resolved for referee_
   ProcessorOptions processorOptions(const SiteCamera& cam) const;
+  void reloadGeometry(const SiteConfig& next, std::vector<std::string>& notes);
 
   SiteConfig config_;
   LogFn log_;
@@ -83,6 +91,15 @@ class SiteRuntime : public ConsoleHost {
   std::vector<size_t> config_index_;  // runner i serves config_.cameras[config_index_[i]]
   std::vector<std::shared_ptr<RawRing>> rings_;  // per runner, when raw frames are kept
   std::thread dump_thread_;
+  // Calibrations accepted on the console and sent to an external publisher.
+  struct SentCalibrations {
+    std::string addr;
+    uint16_t port = 0;
+    std::vector<CameraCalibration> cameras;
+    std::chrono::steady_clock::time_point next;
+  };
+  std::mutex sent_mutex_;
+  SentCalibrations sent_;
   std::atomic<bool> dumping_{false};
 };
 

@@ -21,7 +21,7 @@ constexpr int kMaxLoopFrames = 120;  // frames rendered at start (memory: 5 MB e
 
 bool isSyntheticSpec(const std::string& spec) { return spec.rfind(kPrefix, 0) == 0; }
 
-SyntheticCamera::SyntheticCamera(const std::string& spec) : describe_(spec) {
+SyntheticCamera::SyntheticCamera(const std::string& spec, double fps) : describe_(spec) {
   const std::string rest = spec.substr(std::string(kPrefix).size());
   const size_t slash = rest.rfind('/');
   if (slash == std::string::npos || slash == 0 || slash + 1 == rest.size())
@@ -46,6 +46,7 @@ SyntheticCamera::SyntheticCamera(const std::string& spec) : describe_(spec) {
   SyntheticSource source(s, {index});
   geometry_ = source.renderer().geometry();
   format_ = sceneFormat(s);
+  if (fps > 0) s.fps = fps;
   period_s_ = 1.0 / s.fps;
   Frame f;
   while (source.next(f)) frames_.push_back(f.image.clone());

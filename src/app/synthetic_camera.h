@@ -19,7 +19,8 @@ bool isSyntheticSpec(const std::string& spec);
 class SyntheticCamera : public CameraSource {
  public:
   // Throws InputError naming the spec: malformed, unknown scene, no such camera id.
-  explicit SyntheticCamera(const std::string& spec);
+  // fps > 0: frames come at that rate instead of the scene's.
+  explicit SyntheticCamera(const std::string& spec, double fps = 0);
   GrabStatus grab(Frame& f, double timeout_s, std::string& why) override;
   void interrupt() override { interrupted_ = true; }
   std::string describe() const override { return describe_; }

@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cstring>
+#include <limits>
 
 namespace dv {
 
@@ -108,7 +109,11 @@ std::string unusablePixelFormatReason(uint32_t pfnc, const std::string& name) {
 }
 
 size_t genicamImageBytes(const GenicamPixelLayout& l, int width, int height) {
+  if (width <= 0 || height <= 0) return 0;
   const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+  // A leader may claim any 32-bit size: saturate rather than let n * 10
+  // wrap to a small number that a short payload would pass.
+  if (n > std::numeric_limits<size_t>::max() / 16) return std::numeric_limits<size_t>::max();
   if (l.format == PixelFormat::Bgr8) return 3 * n;
   switch (l.packing) {
     case PixelPacking::Bits8: return n;

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "geometry/calibration/league_fit.h"
 #include "geometry/proto_json.h"
 
 namespace dv {
@@ -184,7 +185,10 @@ FieldModel fieldFromProto(const dv::ssl::SSL_GeometryFieldSize& m) {
   return f;
 }
 
-dv::ssl::SSL_GeometryCameraCalibration toProto(const CameraCalibration& c) {
+dv::ssl::SSL_GeometryCameraCalibration toProto(const CameraCalibration& calibration) {
+  // Packets carry the league's model: a lens with more terms is sent as the
+  // league model's best fit to it.
+  const CameraCalibration c = calibration.lens.any() ? leagueFit(calibration).calibration : calibration;
   dv::ssl::SSL_GeometryCameraCalibration m;
   m.set_camera_id(c.camera_id);
   m.set_focal_length(float(c.focal_length));
@@ -233,11 +237,27 @@ dv::ssl::SSL_GeometryData toProto(const Geometry& g) {
   return m;
 }
 
+Geometry withWirePrecision(const Geometry& g, const std::string& source) {
+  Geometry out = geometryFromProto(toProto(g), source);
+  for (const auto& c : g.cameras) {
+    if (!c.lens.any()) continue;
+    const auto f = [](double v) { return double(float(v)); };
+    CameraCalibration r = c;
+    for (double* v : {&r.focal_length, &r.principal_point_x, &r.principal_point_y, &r.distortion, &r.q0, &r.q1,
+                      &r.q2, &r.q3, &r.tx, &r.ty, &r.tz, &r.lens.k2, &r.lens.k3, &r.lens.p1, &r.lens.p2})
+      *v = f(*v);
+    for (auto& o : out.cameras)
+      if (o.camera_id == c.camera_id) o = r;
+  }
+  return out;
+}
+
 // ---- validation ----
 
 std::optional<std::string> calibrationProblem(const CameraCalibration& c) {
   const double values[] = {c.focal_length, c.principal_point_x, c.principal_point_y, c.distortion,
-                           c.q0, c.q1, c.q2, c.q3, c.tx, c.ty, c.tz};
+                           c.q0, c.q1, c.q2, c.q3, c.tx, c.ty, c.tz,
+                           c.lens.k2, c.lens.k3, c.lens.p1, c.lens.p2};
   for (double v : values) {
     if (!finite(v)) return "a parameter is NaN or infinite";
   }
@@ -416,7 +436,56 @@ struct FirstErrorByte : nlohmann::json_sax<nlohmann::json> {
   }
 };
 
-void checkJsonSyntaxAndShape(const std::string& text, const std::string& source) {
+// dotvision's key beside SSL_GeometryData in .json files: the cameras whose
+// lens has terms beyond the league's model, in full (the "calib" entries hold
+// their league fits, for other readers).
+constexpr const char* kLensKey = "dotvisionLenses";
+constexpr const char* kLensCameraKeys[] = {"cameraId", "focalLength", "principalPointX", "principalPointY",
+                                           "distortion", "q0", "q1", "q2", "q3", "tx", "ty", "tz",
+                                           "k2", "k3", "p1", "p2"};
+
+nlohmann::json lensCameraJson(const CameraCalibration& c) {
+  const double v[] = {c.focal_length, c.principal_point_x, c.principal_point_y, c.distortion, c.q0, c.q1,
+                      c.q2, c.q3, c.tx, c.ty, c.tz, c.lens.k2, c.lens.k3, c.lens.p1, c.lens.p2};
+  nlohmann::json j = nlohmann::json::object();
+  j[kLensCameraKeys[0]] = c.camera_id;
+  for (size_t i = 0; i < std::size(v); ++i) j[kLensCameraKeys[i + 1]] = v[i];
+  return j;
+}
+
+// Replaces the league fits in `g` by the full calibrations of `lenses`.
+void applyLensCameras(const nlohmann::json& lenses, Geometry& g, const std::string& source) {
+  for (size_t i = 0; i < lenses.size(); ++i) {
+    const std::string at = std::string(kLensKey) + "[" + std::to_string(i) + "]";
+    const nlohmann::json& e = lenses[i];
+    if (!e.is_object()) throw InputError(source, at + " must be an object");
+    for (auto it = e.begin(); it != e.end(); ++it) {
+      const std::string& key = it.key();
+      if (std::find_if(std::begin(kLensCameraKeys), std::end(kLensCameraKeys),
+                       [&](const char* k) { return key == k; }) == std::end(kLensCameraKeys))
+        throw InputError(source, at + ": unknown key \"" + key + "\"");
+      if (!it.value().is_number()) throw InputError(source, at + ": \"" + key + "\" must be a number");
+    }
+    for (const char* k : kLensCameraKeys)
+      if (!e.contains(k)) throw InputError(source, at + " lacks \"" + std::string(k) + "\"");
+    const nlohmann::json& id = e["cameraId"];
+    if (!id.is_number_unsigned() || id.get<uint64_t>() > UINT32_MAX)
+      throw InputError(source, at + ": \"cameraId\" must be a non-negative integer");
+    CameraCalibration* c = nullptr;
+    for (auto& cam : g.cameras)
+      if (cam.camera_id == id.get<uint32_t>()) c = &cam;
+    if (!c) throw InputError(source, at + ": camera " + std::to_string(id.get<uint32_t>()) + " is not in \"calib\"");
+    double v[15];
+    for (size_t k = 0; k < 15; ++k) v[k] = e[kLensCameraKeys[k + 1]].get<double>();
+    c->focal_length = v[0], c->principal_point_x = v[1], c->principal_point_y = v[2], c->distortion = v[3];
+    c->q0 = v[4], c->q1 = v[5], c->q2 = v[6], c->q3 = v[7], c->tx = v[8], c->ty = v[9], c->tz = v[10];
+    c->lens = {v[11], v[12], v[13], v[14]};
+    if (auto problem = calibrationProblem(*c))
+      throw InputError(source, at + ": camera " + std::to_string(c->camera_id) + ": implausible calibration: " + *problem);
+  }
+}
+
+nlohmann::json checkJsonSyntaxAndShape(const std::string& text, const std::string& source) {
   nlohmann::json parsed;
   try {
     parsed = nlohmann::json::parse(text);
@@ -445,20 +514,44 @@ void checkJsonSyntaxAndShape(const std::string& text, const std::string& source)
           throw InputError(source, "calib[" + std::to_string(i) + "] must be an object (SSL_GeometryCameraCalibration)");
         }
       }
+    } else if (key == kLensKey) {
+      if (!value.is_array()) throw InputError(source, "\"" + std::string(kLensKey) + "\" must be a list of cameras");
     } else if (key != "models") {
-      throw InputError(source, "unknown field \"" + key + "\" in SSL_GeometryData (expected field, calib, models)");
+      throw InputError(source, "unknown field \"" + key + "\" in SSL_GeometryData (expected field, calib, models, " +
+                                   kLensKey + ")");
     }
   }
   if (!parsed.contains("field")) throw InputError(source, "SSL_GeometryData lacks the required \"field\"");
+  return parsed;
 }
 
 }  // namespace
 
 Geometry geometryFromJson(const std::string& text, const std::string& source) {
-  checkJsonSyntaxAndShape(text, source);
+  nlohmann::json parsed = checkJsonSyntaxAndShape(text, source);
   dv::ssl::SSL_GeometryData m;
-  parseCanonicalJson(text, m, source);
-  return geometryFromProto(m, source);
+  if (!parsed.contains(kLensKey)) {
+    parseCanonicalJson(text, m, source);
+    return geometryFromProto(m, source);
+  }
+  const nlohmann::json lenses = parsed[kLensKey];
+  parsed.erase(kLensKey);
+  parseCanonicalJson(parsed.dump(), m, source);
+  Geometry g = geometryFromProto(m, source);
+  applyLensCameras(lenses, g, source);
+  return g;
+}
+
+std::string toJson(const Geometry& g) {
+  std::string text = toCanonicalJson(toProto(g));
+  nlohmann::json lenses = nlohmann::json::array();
+  for (const auto& c : g.cameras)
+    if (c.lens.any()) lenses.push_back(lensCameraJson(c));
+  if (!lenses.empty() && !text.empty() && text.back() == '}') {
+    text.pop_back();
+    text += ",\"" + std::string(kLensKey) + "\":" + lenses.dump() + "}";
+  }
+  return text;
 }
 
 namespace {
@@ -618,7 +711,7 @@ class YamlReader {
               {"camera_id", "focal_length", "principal_point_x", "principal_point_y", "distortion",
                "q0", "q1", "q2", "q3", "tx", "ty", "tz", "derived_camera_world_tx",
                "derived_camera_world_ty", "derived_camera_world_tz", "pixel_image_width",
-               "pixel_image_height"},
+               "pixel_image_height", "lens"},
               "a camera");
     CameraCalibration c;
     c.camera_id = get<uint32_t>(n, "camera_id", "a non-negative integer");
@@ -645,6 +738,14 @@ class YamlReader {
         c.*member = as<uint32_t>(v, key, "a positive integer");
         if (c.*member == 0) fail(v, "camera " + std::to_string(c.camera_id) + ": '" + key + "' is 0");
       }
+    }
+    if (const YAML::Node lens = n["lens"]) {
+      // dotvision's terms beyond the league's model (LensTerms); each 0 when absent.
+      expectMap(lens, "'lens'");
+      checkKeys(lens, {"k2", "k3", "p1", "p2"}, "'lens'");
+      for (auto [key, member] : {std::pair{"k2", &LensTerms::k2}, {"k3", &LensTerms::k3},
+                                 {"p1", &LensTerms::p1}, {"p2", &LensTerms::p2}})
+        if (const YAML::Node v = lens[key]) c.lens.*member = as<double>(v, std::string("lens.") + key, num);
     }
     if (auto problem = calibrationProblem(c)) {
       fail(n, "camera " + std::to_string(c.camera_id) + ": implausible calibration: " + *problem);
@@ -752,6 +853,14 @@ std::string toYaml(const Geometry& g) {
       real("tz", c.tz);
       if (c.image_width > 0) out << YAML::Key << "pixel_image_width" << YAML::Value << c.image_width;
       if (c.image_height > 0) out << YAML::Key << "pixel_image_height" << YAML::Value << c.image_height;
+      if (c.lens.any()) {
+        out << YAML::Key << "lens" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        real("k2", c.lens.k2);
+        real("k3", c.lens.k3);
+        real("p1", c.lens.p1);
+        real("p2", c.lens.p2);
+        out << YAML::EndMap;
+      }
       out << YAML::EndMap;
     }
     out << YAML::EndSeq;
@@ -775,7 +884,7 @@ Geometry loadGeometry(const std::string& path) {
 void saveGeometry(const Geometry& g, const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext == "json") {
-    writeFile(path, toCanonicalJson(toProto(g)) + "\n");
+    writeFile(path, toJson(g) + "\n");
   } else if (ext == "yaml" || ext == "yml") {
     writeFile(path, toYaml(g));
   } else {

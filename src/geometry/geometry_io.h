@@ -38,12 +38,21 @@ void saveGeometry(const Geometry& g, const std::string& path);
 std::string toYaml(const Geometry& g);
 Geometry geometryFromYaml(const std::string& text, const std::string& source);
 // The text of a .json geometry file; throws InputError naming `source`.
+// Cameras with lens terms (LensTerms) are written as their league fit in
+// "calib" (what other readers and packets see) and in full under the
+// top-level key "dotvisionLenses", which this reads back.
 Geometry geometryFromJson(const std::string& text, const std::string& source);
+std::string toJson(const Geometry& g);
 
 dv::ssl::SSL_GeometryData toProto(const Geometry& g);
+// What processors use: `g` through the wire's single-precision floats, so
+// replays match; a camera with lens terms keeps its own lens (rounded the
+// same way) where the wire would carry its league fit.
+Geometry withWirePrecision(const Geometry& g, const std::string& source);
 dv::ssl::SSL_GeometryFieldSize toProto(const FieldModel& f);
 // Fills derived_camera_world_* from CameraModel::position(), and
-// pixel_image_width/height when known (non-zero).
+// pixel_image_width/height when known (non-zero). A calibration with lens
+// terms is sent as the league model's best fit to it (leagueFit).
 dv::ssl::SSL_GeometryCameraCalibration toProto(const CameraCalibration& c);
 
 // Validates the field and every calibration; generates the markings when the

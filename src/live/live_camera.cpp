@@ -1,5 +1,8 @@
 #include "live/live_camera.h"
 
+#include <pthread.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -37,9 +40,24 @@ LiveCamera::LiveCamera(std::string name, std::unique_ptr<CameraSource> source, P
 
 LiveCamera::~LiveCamera() { stop(); }
 
+namespace {
+// "capture 0", "detect 0" in top -H and in /proc (names are cut at 15 bytes).
+void nameThisThread(const char* role, const std::string& camera) {
+  std::string n = std::string(role) + " " + (camera.rfind("camera ", 0) == 0 ? camera.substr(7) : camera);
+  n.resize(std::min<size_t>(n.size(), 15));
+  pthread_setname_np(pthread_self(), n.c_str());
+}
+}  // namespace
+
 void LiveCamera::start() {
-  capture_ = std::thread([this] { captureLoop(); });
-  processing_ = std::thread([this] { processLoop(); });
+  capture_ = std::thread([this] {
+    nameThisThread("capture", name_);
+    captureLoop();
+  });
+  processing_ = std::thread([this] {
+    nameThisThread("detect", name_);
+    processLoop();
+  });
 }
 
 void LiveCamera::stop() {

@@ -100,11 +100,17 @@ struct CameraRays {
   int width = 0, height = 0;
   // Unit direction of the ray through image point (u, v); false where the
   // distortion model has no ray (k < 0 beyond its fold).
+  std::optional<CameraModel> lens;  // a lens with terms beyond the league's
   bool ray(double u, double v, V3& d) const {
-    const double dx = (u - cx) / f, dy = (v - cy) / f;
-    const double s = 1 + k * (dx * dx + dy * dy);
-    if (!(s > 0)) return false;
-    const double nx = dx * s, ny = dy * s;
+    double nx, ny;
+    if (lens) {
+      if (!(lens->undistortPixel({u, v}, &nx, &ny) > 0)) return false;
+    } else {
+      const double dx = (u - cx) / f, dy = (v - cy) / f;
+      const double s = 1 + k * (dx * dx + dy * dy);
+      if (!(s > 0)) return false;
+      nx = dx * s, ny = dy * s;
+    }
     d = normalized({m[0] * nx + m[1] * ny + m[2], m[3] * nx + m[4] * ny + m[5],
                     m[6] * nx + m[7] * ny + m[8]});
     return true;
@@ -115,6 +121,7 @@ CameraRays makeRays(const CameraCalibration& c) {
   CameraRays r;
   r.f = c.focal_length, r.cx = c.principal_point_x, r.cy = c.principal_point_y;
   r.k = c.distortion;
+  if (c.lens.any()) r.lens.emplace(c);
   // Same rotation as CameraModel::pixelRay: R(q^-1) after SSL-Vision's
   // normalisation rule, so rays are the exact inverse of fieldToImage.
   double x = c.q0, y = c.q1, z = c.q2, w = c.q3;
@@ -267,6 +274,8 @@ struct Renderer::Impl {
       add(front, back, gw, gw + g);
       add(front, back, -gw - g, -gw);
     }
+    for (const SceneBox& c : spec.clutter)
+      boxes.push_back({{c.min.x, c.min.y, c.min.z}, {c.max.x, c.max.y, c.max.z}, c.color});
   }
 
   void binStatic(size_t ci) {

@@ -202,6 +202,10 @@ std::vector<SceneRobot> placeRandomRobots(const SceneSpec& scene, size_t camera_
         if (scene.ball.present)
           clear = clear && std::hypot(scene.ball.position.x - p->x, scene.ball.position.y - p->y) >=
                                min_distance;
+        // Not under a hand or on a shoe: the box's footprint clear of the body.
+        for (const SceneBox& b : scene.clutter)
+          clear = clear && std::hypot(std::max({b.min.x - p->x, 0.0, p->x - b.max.x}),
+                                      std::max({b.min.y - p->y, 0.0, p->y - b.max.y})) >= min_distance / 2 + 30;
         if (!clear) continue;
         r.position = p->xy();
         r.orientation = rng.uniform(-kPi, kPi);

@@ -116,6 +116,14 @@ struct SceneMaterials {
   Rgb ball{255, 120, 20};
 };
 
+// Something on or over the field that is neither robot nor ball: a hand
+// placing a robot, a shoe by the wall, a cable, a bag (an axis-aligned box,
+// shaded like the walls).
+struct SceneBox {
+  FieldPoint min, max;  // mm, corners
+  Rgb color;
+};
+
 struct SceneSpec {
   std::string name = "scene";
   uint64_t seed = 1;
@@ -125,6 +133,7 @@ struct SceneSpec {
   SceneBall ball;
   SceneMaterials materials;
   SceneLighting lighting;
+  std::vector<SceneBox> clutter;
   double noise_sigma = 1.5;   // 8-bit levels, read noise
   double shot_noise = 0.05;   // variance per level of signal (Poisson-like)
   double lens_blur_px = 0.5;  // Gaussian sigma in pixels, 0 = sharp
@@ -163,7 +172,8 @@ SceneSpec defaultScene();
 
 // Places `yellow` + `blue` robots with random distinct ids, at least
 // `min_distance` mm apart (and from the ball and the scene's own robots, whose
-// ids they do not reuse), inside the walls and clear of the goals' walls, in camera
+// ids they do not reuse; clear of the clutter's footprints), inside the walls
+// and clear of the goals' walls, in camera
 // `camera_index`'s view (center blob at least `margin_px` inside the image),
 // with random orientations. Returns only the new robots. Deterministic for
 // `seed`. Throws

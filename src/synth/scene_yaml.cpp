@@ -178,7 +178,7 @@ FieldModel readField(const SceneReader& r, const YAML::Node& n) {
 SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) {
   const std::string where = "cameras[" + std::to_string(index) + "]";
   r.checkKeys(n, where,
-              {"id", "position", "look_at", "up", "focal_length", "distortion",
+              {"id", "position", "look_at", "up", "focal_length", "distortion", "lens",
                "principal_offset", "size", "principal_point", "q", "t"});
   const uint32_t id = uint32_t(
       n["id"].IsDefined() ? r.integer(n["id"], where + ".id", 0, 1000) : int(index));
@@ -190,6 +190,11 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
   const double focal = r.number(n["focal_length"], where + ".focal_length", 1, 1e6);
   double k = 0;
   with(n, "distortion", [&](const YAML::Node& v) { k = r.number(v, where + ".distortion", -10, 10); });
+  LensTerms lens;  // [k2, k3, p1, p2] beyond the league's model (camera_model.h)
+  with(n, "lens", [&](const YAML::Node& v) {
+    const auto l = r.numbers(v, where + ".lens", 4, 4, -10, 10);
+    lens = {l[0], l[1], l[2], l[3]};
+  });
   const bool pose = n["position"].IsDefined() || n["look_at"].IsDefined();
   const bool explicit_pose = n["q"].IsDefined() || n["t"].IsDefined();
   if (pose && explicit_pose)
@@ -210,7 +215,9 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
     });
     if (pos.z <= 0) r.fail(n["position"], where + ".position: the camera must be above the field");
     try {
-      return makeCamera(id, pos, at, focal, k, offset, uint32_t(size[0]), uint32_t(size[1]), up);
+      SceneCamera c = makeCamera(id, pos, at, focal, k, offset, uint32_t(size[0]), uint32_t(size[1]), up);
+      c.calib.lens = lens;
+      return c;
     } catch (const std::invalid_argument& e) {
       r.fail(n, where + ": " + e.what());
     }
@@ -224,6 +231,7 @@ SceneCamera readCamera(const SceneReader& r, const YAML::Node& n, size_t index) 
   c.calib.camera_id = id;
   c.calib.focal_length = focal;
   c.calib.distortion = k;
+  c.calib.lens = lens;
   c.calib.principal_point_x = (size[0] - 1) / 2;
   c.calib.principal_point_y = (size[1] - 1) / 2;
   with(n, "principal_point", [&](const YAML::Node& v) {
@@ -378,7 +386,7 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
               {"name", "seed", "field", "cameras", "robots", "random_robots", "ball",
                "random_motion", "materials", "lighting", "noise_sigma", "shot_noise",
                "lens_blur_px", "frames", "fps", "motion_blur", "motion_blur_samples", "bayer",
-               "png", "antialias", "jpeg_quality"});
+               "png", "antialias", "jpeg_quality", "clutter"});
   SceneSpec s;
   with(root, "name", [&](const YAML::Node& v) { s.name = r.text(v, "name"); });
   with(root, "seed", [&](const YAML::Node& v) { s.seed = r.seed(v, "seed"); });
@@ -403,6 +411,20 @@ SceneSpec readScene(const SceneReader& r, const YAML::Node& root) {
         if (s.robots[j].team == s.robots[i].team && s.robots[j].id == s.robots[i].id)
           r.fail(v[i], "robots[" + std::to_string(i) + "]: this team already has id " +
                            std::to_string(s.robots[i].id));
+    }
+  });
+  with(root, "clutter", [&](const YAML::Node& v) {
+    if (!v.IsSequence()) r.fail(v, "clutter: expected a list");
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string where = "clutter[" + std::to_string(i) + "]";
+      r.checkKeys(v[i], where, {"min", "max", "color"});
+      for (const char* k : {"min", "max", "color"})
+        if (!v[i][k].IsDefined()) r.fail(v[i], where + ": missing key '" + k + "'");
+      SceneBox b{r.point3(v[i]["min"], where + ".min"), r.point3(v[i]["max"], where + ".max"),
+                 r.color(v[i]["color"], where + ".color")};
+      if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z && b.min.z >= 0))
+        r.fail(v[i], where + ": min must lie below max on every axis, and not under the floor");
+      s.clutter.push_back(b);
     }
   });
   with(root, "materials", [&](const YAML::Node& v) { s.materials = readMaterials(r, v); });

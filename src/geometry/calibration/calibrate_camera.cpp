@@ -231,7 +231,8 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
     }
     const auto fit = refineOnLines(pose->params, obs.pixels, model, req.points, lf);
     r.refinement_accepted = fit.improved;
-    r.calibration = fit.params.toCalibration(req.camera_id, w, h);
+    r.lens = fitLensOnLines(fit.params, obs.pixels, model, req.points, lf);
+    r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
     r.has_pose = true;
     r.symmetry = decidedByPoints(fit.params, w, h);
     // The points say where the camera is: no region to check against.
@@ -268,6 +269,8 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
                 choice.decision.reason + "; give --near X,Y (roughly where the camera looks) or four points";
     return r;
   }
+  r.lens = fitLensOnLines(choice.params, obs.pixels, model, {}, lf);
+  r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
   // Without the height, a view straight down drifts along its unobserved
   // height; ask for it before judging the drifted fit.
   spdlog::debug("distortion start: kappa {:.3g}, pp ({:.1f}, {:.1f}); final f {:.1f}, k {:.4f}, pp ({:.1f}, {:.1f})",

@@ -12,6 +12,7 @@
 #include "geometry/calibration/calibration_quality.h"
 #include "geometry/calibration/field_symmetry.h"
 #include "geometry/calibration/intrinsics.h"
+#include "geometry/calibration/lens_fit.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/point_pose.h"
 #include "geometry/calibration/pose_uncertainty.h"
@@ -67,6 +68,9 @@ struct CalibrationOutcome {
   // lines in view pin down.
   std::optional<PredictedFieldError> predicted_error;
   bool refinement_accepted = false;
+  // The lens terms beyond the league's model, tried once a pose is found;
+  // `calibration` carries them when the lines support them.
+  std::optional<LensFitResult> lens;
   bool automatic = false;
   bool has_pose = false;  // `calibration` holds a pose (passed or refused)
   // How the field's half-turn symmetry was settled; empty when no pose was

@@ -67,6 +67,8 @@ CalibrationReport makeCalibrationReport(const CalibrationOutcome& o, const Field
   if (r.has_calibration) {
     r.calibration = o.calibration;
     r.measures = o.measures;
+    r.lens = o.lens;
+    r.league_fit = leagueFit(o.calibration);
     const CameraModel cam(o.calibration);
     const FieldLineModel model(field);
     for (const auto& g : o.lines.groups) {
@@ -122,6 +124,28 @@ std::string formatReport(const CalibrationReport& r) {
                   "  fit: line overlap %.3f, mean line distance %.3f px (%.2f mm), model lines seen %.0f%%\n",
                   m.overlap_ratio, m.mean_distance_px, m.mean_distance_mm, 100 * m.model_support);
     s += buf;
+    if (r.lens) {
+      const auto& l = c.lens;
+      std::snprintf(buf, sizeof buf,
+                    "  lens: %s; line residual (rms) league model %.3f px, with k2 k3 p1 p2 %.3f px over %d line bins, "
+                    "information gain %.1f\n",
+                    r.lens->lens_used ? "terms beyond the league's model taken" : "the league's model",
+                    r.lens->league_rms_px, r.lens->lens_rms_px, r.lens->pixels, r.lens->information_gain);
+      s += buf;
+      if (l.any()) {
+        std::snprintf(buf, sizeof buf, "    k2 %.6f, k3 %.6f, p1 %.6f, p2 %.6f\n", l.k2, l.k3, l.p1, l.p2);
+        s += buf;
+      }
+    }
+    if (r.league_fit && c.lens.any()) {
+      const auto& p = r.league_fit->calibration;
+      std::snprintf(buf, sizeof buf,
+                    "  published (league model's best fit): focal length %.1f px, principal point (%.1f, %.1f) px, "
+                    "distortion %.4f; field error against the lens %.2f mm mean, %.2f mm max\n",
+                    p.focal_length, p.principal_point_x, p.principal_point_y, p.distortion,
+                    r.league_fit->residual.mean_mm, r.league_fit->residual.max_mm);
+      s += buf;
+    }
   }
   if (r.symmetry) s += "  " + r.symmetry->describe() + "\n";
   s += r.passed ? "  verdict: passed\n" : "  verdict: REFUSED: " + r.verdict + "\n";
@@ -159,6 +183,20 @@ nlohmann::json reportToJson(const CalibrationReport& r) {
                        {"position_mm", {cam.position().x(), cam.position().y(), cam.position().z()}},
                        {"tilt_deg", r.tilt_deg},
                        {"heading_deg", r.heading_deg}};
+    if (r.lens)
+      j["lens"] = {{"terms_used", r.lens->lens_used},
+                   {"k2", c.lens.k2}, {"k3", c.lens.k3}, {"p1", c.lens.p1}, {"p2", c.lens.p2},
+                   {"line_rms_px", {{"league", r.lens->league_rms_px}, {"lens", r.lens->lens_rms_px}}},
+                   {"pixels", r.lens->pixels},
+                   {"information_gain", r.lens->information_gain}};
+    if (r.league_fit) {
+      const auto& p = r.league_fit->calibration;
+      j["published"] = {{"focal_length_px", p.focal_length},
+                        {"principal_point_px", {p.principal_point_x, p.principal_point_y}},
+                        {"distortion", p.distortion},
+                        {"field_error_mm", {{"mean", r.league_fit->residual.mean_mm},
+                                            {"max", r.league_fit->residual.max_mm}}}};
+    }
     const auto& m = r.measures;
     j["measures"] = {{"overlap_ratio", m.overlap_ratio},         {"mean_distance_px", m.mean_distance_px},
                      {"mean_distance_mm", m.mean_distance_mm},   {"line_pixels", m.line_pixels},

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/calibration/calibrate_camera.h"
+#include "geometry/calibration/league_fit.h"
 
 namespace dv {
 
@@ -36,6 +37,8 @@ struct CalibrationReport {
   CameraCalibration calibration;
   double tilt_deg = 0, heading_deg = 0;  // optical axis: from straight down; its direction on the field from +x
   CalibrationMeasures measures;
+  std::optional<LensFitResult> lens;    // the test of the lens terms, both line residuals
+  std::optional<LeagueFit> league_fit;  // what packets carry, with its field residual
   std::optional<SymmetryDecision> symmetry;
   bool passed = false;
   std::string verdict;  // "passed" or the reason for refusing

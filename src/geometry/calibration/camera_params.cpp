@@ -11,6 +11,7 @@ CameraParams CameraParams::fromCalibration(const CameraCalibration& c) {
   p.intrinsics[1] = c.principal_point_x;
   p.intrinsics[2] = c.principal_point_y;
   p.intrinsics[3] = c.distortion;
+  p.lens[0] = c.lens.k2, p.lens[1] = c.lens.k3, p.lens[2] = c.lens.p1, p.lens[3] = c.lens.p2;
   // Ceres wants a row-major matrix here.
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> r = model.rotation();
   ceres::RotationMatrixToAngleAxis(ceres::RowMajorAdapter3x3(r.data()), p.rotation);
@@ -28,6 +29,7 @@ CameraCalibration CameraParams::toCalibration(uint32_t camera_id, uint32_t width
       Eigen::Vector3d(position[0], position[1], position[2]));
   c.image_width = width;
   c.image_height = height;
+  c.lens = {lens[0], lens[1], lens[2], lens[3]};
   return c;
 }
 

@@ -17,6 +17,7 @@ struct CameraParams {
   double intrinsics[4] = {1000, 0, 0, 0};  // f, cx, cy, k (normalised)
   double rotation[3] = {0, 0, 0};          // angle-axis, field -> camera
   double position[3] = {0, 0, 4000};       // camera center, field mm
+  double lens[4] = {0, 0, 0, 0};           // LensTerms k2, k3, p1, p2 (zero: league model)
 
   static CameraParams fromCalibration(const CameraCalibration& c);
   CameraCalibration toCalibration(uint32_t camera_id, uint32_t width, uint32_t height) const;
@@ -30,6 +31,24 @@ bool backProjectPixel(const T* intr, const T* rot, const T* pos, double u, doubl
   const T ny = (T(v) - intr[2]) / intr[0];
   const T s = T(1) + intr[3] * (nx * nx + ny * ny);
   const T ray_cam[3] = {nx * s, ny * s, T(1)};
+  const T inverse[3] = {-rot[0], -rot[1], -rot[2]};
+  T ray[3];
+  ceres::AngleAxisRotatePoint(inverse, ray_cam, ray);
+  if (!(ray[2] < T(-1e-9))) return false;
+  const T t = (T(height) - pos[2]) / ray[2];
+  xy[0] = pos[0] + t * ray[0];
+  xy[1] = pos[1] + t * ray[1];
+  return true;
+}
+
+// The same through a lens with terms beyond the league's (LensTerms order).
+template <typename T>
+bool backProjectPixelLens(const T* intr, const T* lens, const T* rot, const T* pos, double u, double v,
+                          double height, T* xy) {
+  const T dx = (T(u) - intr[1]) / intr[0];
+  const T dy = (T(v) - intr[2]) / intr[0];
+  T ray_cam[3] = {T(0), T(0), T(1)};
+  if (!(undistortNormalised(dx, dy, intr[3], lens, &ray_cam[0], &ray_cam[1]) > T(0))) return false;
   const T inverse[3] = {-rot[0], -rot[1], -rot[2]};
   T ray[3];
   ceres::AngleAxisRotatePoint(inverse, ray_cam, ray);

@@ -11,19 +11,22 @@ namespace dv {
 
 namespace {
 
+// The camera's lens terms (LensTerms) stay as its own fit left them.
 struct SharedLineResidual {
-  SharedLineResidual(ImagePx px, const FieldLineElement* e, double inv_scale)
-      : px(px), e(e), inv_scale(inv_scale) {}
+  SharedLineResidual(ImagePx px, const FieldLineElement* e, double inv_scale, const double* lens)
+      : px(px), e(e), inv_scale(inv_scale), lens(lens) {}
   template <typename T>
   bool operator()(const T* intr, const T* rot, const T* pos, const T* offset, T* r) const {
     T xy[2];
-    if (!backProjectPixel(intr, rot, pos, px.u, px.v, 0.0, xy)) return false;
+    const T l[4] = {T(lens[0]), T(lens[1]), T(lens[2]), T(lens[3])};
+    if (!backProjectPixelLens(intr, l, rot, pos, px.u, px.v, 0.0, xy)) return false;
     r[0] = (e->signedDistance(xy) - offset[0]) * T(inv_scale);
     return true;
   }
   ImagePx px;
   const FieldLineElement* e;
   double inv_scale;
+  const double* lens;
 };
 
 struct OffsetPrior {
@@ -63,7 +66,7 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
     for (size_t c = 0; c < ps.size(); ++c)
       for (const auto& m : matches[c]) {
         double r;
-        SharedLineResidual res(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px);
+        SharedLineResidual res(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px, ps[c].lens);
         if (!res(ps[c].intrinsics, ps[c].rotation, ps[c].position, &off[m.element], &r)) r = o.gate_px;
         sum += cauchyCost(std::min(std::abs(r), o.gate_px), o.loss_scale_px);
         ++n;
@@ -90,7 +93,7 @@ JointRefineResult refineJointly(const std::vector<CameraLines>& cams, const Fiel
     for (const auto& m : matches[c])
       problem.AddResidualBlock(
           new ceres::AutoDiffCostFunction<SharedLineResidual, 1, 4, 3, 3, 1>(
-              new SharedLineResidual(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px)),
+              new SharedLineResidual(m.px, &model.elements()[m.element], 1.0 / m.mm_per_px, p.lens)),
           loss, p.intrinsics, p.rotation, p.position, &offsets[m.element]);
     // Principal point and position trade against each other along a nearly
     // flat valley (thesis eq. 5.8); the prior keeps the point near each

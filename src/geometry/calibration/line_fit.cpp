@@ -46,9 +46,9 @@ std::vector<LinePixelMatch> matchLinePixels(const CameraParams& p, const std::ve
   out.reserve(pixels.size());
   for (const auto& px : pixels) {
     double a[2], b[2], c[2];
-    if (!backProjectPixel(p.intrinsics, p.rotation, p.position, px.u, px.v, 0.0, a)) continue;
-    if (!backProjectPixel(p.intrinsics, p.rotation, p.position, px.u + 1, px.v, 0.0, b)) continue;
-    if (!backProjectPixel(p.intrinsics, p.rotation, p.position, px.u, px.v + 1, 0.0, c)) continue;
+    if (!backProjectPixelLens(p.intrinsics, p.lens, p.rotation, p.position, px.u, px.v, 0.0, a)) continue;
+    if (!backProjectPixelLens(p.intrinsics, p.lens, p.rotation, p.position, px.u + 1, px.v, 0.0, b)) continue;
+    if (!backProjectPixelLens(p.intrinsics, p.lens, p.rotation, p.position, px.u, px.v + 1, 0.0, c)) continue;
     const double scale = 0.5 * (std::hypot(b[0] - a[0], b[1] - a[1]) + std::hypot(c[0] - a[0], c[1] - a[1]));
     if (!(scale > 0) || !std::isfinite(scale)) continue;
     const auto m = model.nearest({a[0], a[1]});

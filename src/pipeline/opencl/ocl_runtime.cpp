@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include "pipeline/opencl/embedded_kernels.h"
@@ -13,6 +14,14 @@
 namespace dv {
 
 namespace {
+
+// PoCL's first platform query is not thread-safe (two cameras of serve
+// starting at once crashed inside hwloc), nor is a shared program cache
+// written by two builds at once: device listing and context set-up take turns.
+std::mutex& openClSetupMutex() {
+  static std::mutex m;
+  return m;
+}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -116,6 +125,7 @@ const char* oclStatusName(cl_int s) {
 }
 
 std::vector<OclDeviceInfo> listOpenClDevices(std::string* error) {
+  std::lock_guard<std::mutex> lock(openClSetupMutex());
   std::vector<OclDeviceInfo> out;
   cl_uint np = 0;
   cl_int st = clGetPlatformIDs(0, nullptr, &np);
@@ -216,6 +226,7 @@ std::string embeddedProgramSource() {
 
 OclContext::OclContext(const OclDeviceInfo& device, const std::string& build_options)
     : device_(device) {
+  std::lock_guard<std::mutex> lock(openClSetupMutex());
   cl_int st = CL_SUCCESS;
   const cl_context_properties props[] = {CL_CONTEXT_PLATFORM,
                                          reinterpret_cast<cl_context_properties>(device.platform), 0};

@@ -1,0 +1,91 @@
+// Compressed video as a user would feed it: the 60 fps motion preset (the
+// ball kicked at 6.1-6.5 m/s, robots at up to 3 m/s, motion blur, flicker)
+// rendered at 1224 x 1024 (DV_SCENE_FULL=1: 2448 x 2048 too), encoded by
+// ffmpeg to H.264 and H.265 in yuv420p (chroma at half resolution, blocky
+// where things move) at the bit rates venues stream at, then `dotvision
+// run` with tracking and `dotvision eval`. The ball must keep its recall
+// with no codec-specific setting. Skips where ffmpeg lacks the encoder.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_process.h"
+#include "temp_dir.h"
+
+namespace dv {
+namespace {
+
+bool hasEncoder(const std::string& name) {
+  return std::system(("ffmpeg -hide_banner -encoders 2>/dev/null | grep -q ' " + name + " '").c_str()) == 0;
+}
+
+struct Codec {
+  const char* encoder;
+  const char* bitrate;
+  // Held to every bar; else to the ball's recall only. H.265 at 3 Mbit/s
+  // leaves an orange ghost for four frames where the ball lay before its
+  // kick, taken for a second ball (0.21 false balls per frame), and misses
+  // 3 of 288 robots: open, printed in the table.
+  bool all_bars;
+};
+
+void runCodecs(double scale, int frames) {
+  TempDir dir("dv_codec");
+  std::string out;
+  char scale_arg[32];
+  std::snprintf(scale_arg, sizeof scale_arg, "%g", scale);
+  ASSERT_EQ(runCli("synth --preset motion_60fps_flicker --png --frames " + std::to_string(frames) + " --scale " +
+                       scale_arg + " --out " + dir.file("scene"),
+                   out),
+            0)
+      << out;
+  for (const Codec& c : {Codec{"libx264", "3M", true}, Codec{"libx264", "8M", true}, Codec{"libx265", "3M", false}}) {
+    if (!hasEncoder(c.encoder)) {
+      std::printf("  %s: not in this ffmpeg, skipped\n", c.encoder);
+      continue;
+    }
+    const std::string video = dir.file(std::string(c.encoder) + "_" + c.bitrate + ".mp4");
+    const std::string encode = std::string("ffmpeg -hide_banner -loglevel error -y -framerate 60 -i ") +
+                               dir.file("scene/frame_0_%05d.png") + " -c:v " + c.encoder +
+                               " -pix_fmt yuv420p -b:v " + c.bitrate + " -maxrate " + c.bitrate + " -bufsize " +
+                               c.bitrate + (std::string(c.encoder) == "libx265" ? " -x265-params log-level=error" : "") +
+                               " " + video;
+    ASSERT_EQ(std::system(encode.c_str()), 0) << encode;
+    const std::string det = video + ".jsonl";
+    ASSERT_EQ(runCli("run --source " + video + " --geometry " + dir.file("scene/geometry.json") +
+                         " --camera-id 0 --robot-height 140 --no-publish --quiet --jsonl " + det,
+                     out),
+              0)
+        << out;
+    ASSERT_EQ(runCli("eval --json --truth " + dir.file("scene/truth.jsonl") + " --detections " + det, out), 0) << out;
+    const auto j = nlohmann::json::parse(out.substr(out.find('{')));
+    const auto& o = j["overall"];
+    const double ball_recall = o["balls"]["recall"], robot_recall = o["robots"]["recall"];
+    const double precision = o["robots"]["precision"], ids = o["robots"]["id_accuracy"];
+    const double false_balls = o["balls"]["false_positives"].get<double>() / o["frames"].get<double>();
+    std::printf("| %s %s | %s | frames %d | robots recall %.3f precision %.3f id %.3f | ball recall %.3f, "
+                "%.3f false per frame, error median %.1f mm p95 %.1f mm |\n",
+                c.encoder, c.bitrate, scale == 1 ? "2448x2048" : "1224x1024", o["frames"].get<int>(), robot_recall,
+                precision, ids, ball_recall, false_balls, o["balls"]["position_error_mm"]["median"].get<double>(),
+                o["balls"]["position_error_mm"]["p95"].get<double>());
+    SCOPED_TRACE(std::string(c.encoder) + " " + c.bitrate);
+    EXPECT_GE(ball_recall, 0.99);
+    if (!c.all_bars) continue;
+    EXPECT_LE(false_balls, 0.02);
+    EXPECT_GE(robot_recall, 0.99);
+    EXPECT_GE(precision, 0.995);
+    EXPECT_GE(ids, 0.99);
+  }
+}
+
+TEST(CliCodec, TheFastBallKeepsItsRecallInH264AndH265Video) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "no ffmpeg on this machine";
+  runCodecs(0.5, 24);
+  if (const char* e = std::getenv("DV_SCENE_FULL"); e && std::string(e) == "1") runCodecs(1, 24);
+}
+
+}  // namespace
+}  // namespace dv
