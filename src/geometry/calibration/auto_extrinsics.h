@@ -1,10 +1,11 @@
 #pragma once
 // Extrinsics without clicked points (beyond the thesis): hypotheses from
-// matching pairs of detected straight lines to pairs of model lines near the
-// camera's field region, scored on the line pixels, the best refined on all
-// line pixels coarse to fine. Symmetric mix-ups are rejected by the expected
-// extent (the camera's region must be in view); when two different poses fit
-// about equally well the result is "cannot decide".
+// matching pairs of detected straight lines to pairs of model lines anywhere
+// on the field, and from the centre circle's ellipse with the halfway line,
+// scored on the line pixels, the best refined on all line pixels coarse to
+// fine. The pose is found up to the field's half turn, which the caller
+// settles; when two poses that are not each other's twins fit about equally
+// well the result is "cannot decide".
 #include <optional>
 #include <string>
 
@@ -16,16 +17,22 @@ namespace dv {
 struct AutoExtrinsicsOptions {
   std::optional<double> camera_height_mm;
   int max_refined_hypotheses = 6;
+  int reranked_hypotheses = 80;
 };
 
 struct AutoExtrinsicsResult {
-  std::optional<CameraParams> params;
-  std::string reason;  // why params is empty
+  // Every pose that fits the lines about equally well, each up to its half
+  // turn, the best first; one in the usual case, more where the view itself
+  // is symmetric (the centre circle with both centre lines and nothing else
+  // looks the same after a quarter turn). The caller picks with outside
+  // knowledge or refuses.
+  std::vector<CameraParams> readings;
+  std::string reason;  // why readings is empty
   int hypotheses = 0;
 };
 
 AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const PixelDistortion& distortion,
-                                           const FieldModel& field, const FieldRect& region, int width,
-                                           int height, const AutoExtrinsicsOptions& options);
+                                           const FieldModel& field, int width, int height,
+                                           const AutoExtrinsicsOptions& options);
 
 }  // namespace dv

@@ -9,6 +9,8 @@
 #include "geometry/calibration/auto_extrinsics.h"
 #include "geometry/calibration/line_fit.h"
 #include "geometry/calibration/line_pixels.h"
+#include "geometry/calibration/pose_uncertainty.h"
+#include <spdlog/spdlog.h>
 
 namespace dv {
 
@@ -82,6 +84,36 @@ std::optional<std::string> unobservableHeight(const CameraCalibration& c, bool h
   return std::string(buf);
 }
 
+// A pose the lines fit but do not pin down (too little of the field in
+// view) is refused rather than written. Its predicted field error (one
+// sigma, from the line centres' scatter) must stay within half the
+// millimetre the calibration promises on the carpet, where on the pose
+// sweep the error found ran up to 2.7 times the prediction (corner views),
+// and within the millimetre at robot height, where the prediction adds the
+// height's coupling to the tilt and runs above the error found.
+constexpr double kMaxPredictedCarpetErrorMm = 0.5;
+constexpr double kMaxPredicted150ErrorMm = 1.0;
+
+std::optional<std::string> poorlyPinned(CalibrationOutcome& r, const LineObservation& obs, const FieldLineModel& model,
+                                        const FieldModel& field, const CalibrationRequest& req, int w, int h) {
+  PoseUncertaintyOptions uo;
+  uo.height_fixed = req.camera_height_mm.has_value();
+  uo.width = w, uo.height = h;
+  r.predicted_error =
+      predictFieldError(CameraParams::fromCalibration(r.calibration), obs.pixels, model, field.withBoundary(), uo);
+  if (!r.predicted_error) return std::string("too few line pixels fit to judge the pose");
+  const auto& e = *r.predicted_error;
+  spdlog::debug("predicted field error {:.3f} mm at z=0, {:.3f} mm at z=150 (noise {:.2f} px, {} px)", e.at_carpet_mm,
+                e.at_150_mm, e.noise_px, e.pixels_used);
+  if (e.at_carpet_mm <= kMaxPredictedCarpetErrorMm && e.at_150_mm <= kMaxPredicted150ErrorMm) return std::nullopt;
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "the lines in view do not pin the pose down (predicted field error %.2f mm at z=0, %.2f mm at "
+                "z=150)%s",
+                e.at_carpet_mm, e.at_150_mm, uo.height_fixed ? "" : "; give --camera-height");
+  return std::string(buf);
+}
+
 // Field size of an image pixel the points imply (mean over point pairs).
 double pointsScale(const std::vector<PointCorrespondence>& pts) {
   double sum = 0;
@@ -99,10 +131,21 @@ double pointsScale(const std::vector<PointCorrespondence>& pts) {
 // Where the automatic search looks, and what settles the symmetry.
 struct SearchPlan {
   FieldRect region;
-  bool gate_on_region = true;  // the region's center must be in view
+  bool by_region = true;  // the view center must lie in the region (else near target)
   FieldMm target{0, 0};
   std::string basis;
 };
+
+// A region's sides on the field's outer lines reach on outwards: a view
+// centre beyond the goal or touch line still lies in the region.
+FieldRect openOuterEdges(FieldRect r, const FieldModel& field) {
+  const double l = field.field_length / 2.0, w = field.field_width / 2.0, far = 1e9;
+  if (r.x_min <= -l) r.x_min = -far;
+  if (r.x_max >= l) r.x_max = far;
+  if (r.y_min <= -w) r.y_min = -far;
+  if (r.y_max >= w) r.y_max = far;
+  return r;
+}
 
 SearchPlan planSearch(const FieldModel& field, const CalibrationRequest& req) {
   SearchPlan plan;
@@ -120,7 +163,7 @@ SearchPlan planSearch(const FieldModel& field, const CalibrationRequest& req) {
       const double hx = (size.x_max - size.x_min) / 2, hy = (size.y_max - size.y_min) / 2;
       plan.target = req.hint.near;
       plan.region = {plan.target.x - hx, plan.target.x + hx, plan.target.y - hy, plan.target.y + hy};
-      plan.gate_on_region = false;  // "roughly where it looks"
+      plan.by_region = false;  // "roughly where it looks"
       plan.basis = req.hint.describe();
       break;
     }
@@ -205,12 +248,18 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   };
   AutoExtrinsicsOptions ao;
   ao.camera_height_mm = req.camera_height_mm;
-  const auto found = findPoseAutomatically(obs, distortion, field, plan.region, w, h, ao);
-  if (!found.params) {
+  const auto found = findPoseAutomatically(obs, distortion, field, w, h, ao);
+  if (found.readings.empty()) {
     refuse(found.reason);
     return r;
   }
-  const SymmetryChoice choice = chooseNearTarget(*found.params, plan.target, plan.basis, w, h);
+  if (!plan.by_region && found.readings.size() > 1) {
+    refuse("different poses fit the lines about equally well, and --near cannot tell them apart");
+    return r;
+  }
+  const SymmetryChoice choice =
+      plan.by_region ? chooseInRegion(found.readings, openOuterEdges(plan.region, field), plan.basis, w, h)
+                     : chooseNearTarget(found.readings[0], plan.target, plan.basis, w, h);
   r.symmetry = choice.decision;
   r.refinement_accepted = true;
   r.calibration = choice.params.toCalibration(req.camera_id, w, h);
@@ -222,8 +271,25 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
   }
   r.lens = fitLensOnLines(choice.params, obs.pixels, model, {}, lf);
   r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
-  finish(r, obs, field, plan.gate_on_region ? std::optional<FieldRect>(plan.region) : std::nullopt);
-  if (!r.problem) r.problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  // Without the height, a view straight down drifts along its unobserved
+  // height; ask for it before judging the drifted fit.
+  spdlog::debug("distortion start: kappa {:.3g}, pp ({:.1f}, {:.1f}); final f {:.1f}, k {:.4f}, pp ({:.1f}, {:.1f})",
+                distortion.kappa, distortion.cx, distortion.cy, r.calibration.focal_length, r.calibration.distortion,
+                r.calibration.principal_point_x, r.calibration.principal_point_y);
+  auto height_problem = unobservableHeight(r.calibration, req.camera_height_mm.has_value());
+  const double z = CameraModel(r.calibration).position().z();
+  if (!height_problem && !req.camera_height_mm && !(z >= 500 && z <= 20000)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the lines do not fix the camera height (the fit drifts to %.0f mm); give --camera-height", z);
+    height_problem = std::string(buf);
+  }
+  // The symmetry choice has placed the view in the region: no region gate.
+  finish(r, obs, field, std::nullopt);
+  if (height_problem) r.problem = height_problem;
+  if (!r.problem) {
+    auto unpinned = poorlyPinned(r, obs, model, field, req, w, h);
+    if (req.refuse_unpinned) r.problem = std::move(unpinned);
+  }
   if (r.problem) refuse(*r.problem);
   return r;
 }

@@ -15,6 +15,7 @@
 #include "geometry/calibration/lens_fit.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/point_pose.h"
+#include "geometry/calibration/pose_uncertainty.h"
 #include "geometry/calibration/view_hint.h"
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
@@ -34,6 +35,10 @@ struct CalibrationRequest {
   // settles the field's symmetry (and says so).
   ViewHint hint;
   std::optional<double> camera_height_mm;
+  // Automatic mode refuses a pose whose predicted field error is over the
+  // bar; a joint refinement over several cameras that judges the seams
+  // itself may take such a pose as its start (the prediction is reported).
+  bool refuse_unpinned = true;
   std::string source = "image";  // names the image in messages
 };
 
@@ -59,6 +64,9 @@ struct CalibrationOutcome {
   // must not write or send `calibration` then.
   std::optional<std::string> problem;
   std::optional<IntrinsicsResult> intrinsics;
+  // Automatic mode: how far off the field positions may be, given what the
+  // lines in view pin down.
+  std::optional<PredictedFieldError> predicted_error;
   bool refinement_accepted = false;
   // The lens terms beyond the league's model, tried once a pose is found;
   // `calibration` carries them when the lines support them.

@@ -69,6 +69,34 @@ SymmetryChoice chooseNearTarget(const CameraParams& found, FieldMm target, const
   return c;
 }
 
+SymmetryChoice chooseInRegion(const std::vector<CameraParams>& readings, const FieldRect& region,
+                              const std::string& basis, int w, int h) {
+  const FieldMm center{(region.x_min + region.x_max) / 2, (region.y_min + region.y_max) / 2};
+  std::vector<CameraParams> inside;
+  for (const auto& r : readings)
+    for (const CameraParams& p : {r, halfTurnTwin(r)})
+      if (region.contains(viewCenter(p, w, h))) inside.push_back(p);
+  if (readings.size() == 1 && inside.size() == 2) return chooseNearTarget(readings[0], center, basis, w, h);
+  const CameraParams& chosen = inside.size() == 1 ? inside[0] : readings[0];
+  SymmetryChoice c{chosen, describeBoth(chosen, halfTurnTwin(chosen), w, h)};
+  c.decision.basis = basis;
+  char buf[240];
+  if (inside.size() != 1) {
+    c.decision.decided = false;
+    if (inside.empty())
+      std::snprintf(buf, sizeof buf, "no reading looks into x %.0f..%.0f, y %.0f..%.0f", region.x_min, region.x_max,
+                    region.y_min, region.y_max);
+    else
+      std::snprintf(buf, sizeof buf, "%zu readings that fit the lines equally well look into it", inside.size());
+    c.decision.reason = buf;
+  } else if (readings.size() > 1) {
+    std::snprintf(buf, sizeof buf, " (the view looks the same in %zu poses; one looks into the region)",
+                  2 * readings.size());
+    c.decision.basis += buf;
+  }
+  return c;
+}
+
 SymmetryDecision decidedByPoints(const CameraParams& p, int w, int h) {
   SymmetryDecision d = describeBoth(p, halfTurnTwin(p), w, h);
   d.basis = "the given points";

@@ -5,9 +5,11 @@
 // knowledge from outside the image (the camera-id layout, a hint, the given
 // points); it is decided here and said out loud, never silently.
 #include <string>
+#include <vector>
 
 #include "core/units.h"
 #include "geometry/calibration/camera_params.h"
+#include "geometry/field_model.h"
 
 namespace dv {
 
@@ -40,6 +42,16 @@ struct SymmetryChoice {
 };
 SymmetryChoice chooseNearTarget(const CameraParams& found, FieldMm target, const std::string& basis, int width,
                                 int height);
+
+// Of the readings (each with its twin), the one that looks into `region`
+// (the camera-id layout's region or --region): the region is where the
+// image center lands, so the reading whose view center lies in it is taken,
+// however near the readings are (a camera aimed at the centre circle). Two
+// inside: of a single reading and its twin, the one nearer the region's
+// center, undecided when about as near; none inside, or several readings
+// inside: undecided.
+SymmetryChoice chooseInRegion(const std::vector<CameraParams>& readings, const FieldRect& region,
+                              const std::string& basis, int width, int height);
 
 // Given field points fix the half; the twin is what the same clicks would
 // give with the coordinates' signs flipped.
