@@ -9,8 +9,9 @@
 # At a venue the browsers run on the operators' laptops; here they share the
 # machine's cores, so they run at nice $BROWSER_NICE (default 19) to stand in
 # for another machine: what is measured is then what serving the console
-# costs serve. BROWSER_NICE=0 shows the worst case of browsers on the
-# vision machine itself.
+# costs serve. BROWSER_IDLE=1 runs them under SCHED_IDLE as well (closer
+# still to another machine); BROWSER_NICE=0 shows the worst case of
+# browsers on the vision machine itself.
 #   scripts/console_bench.sh [BUILD_DIR] [SITE.yaml] [SECONDS]
 set -euo pipefail
 build=${1:-build}
@@ -36,7 +37,7 @@ run() {  # run LABEL BROWSERS
         echo "<iframe src=\"http://127.0.0.1:$port/$p.html\" width=1280 height=900></iframe>"
       done
     } >"$work/all$b.html"
-    nice -n "${BROWSER_NICE:-19}" chromium --headless --no-sandbox --disable-gpu --user-data-dir="$work/profile$b" \
+    ${BROWSER_IDLE:+chrt -i 0} nice -n "${BROWSER_NICE:-19}" chromium --headless --no-sandbox --disable-gpu --user-data-dir="$work/profile$b" \
       --window-size=1400,1000 --remote-debugging-port=0 "file://$work/all$b.html" >/dev/null 2>&1 &
     pids+=($!)
   done
