@@ -9,6 +9,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/error.h"
+#include "frame_count.h"
 #include "io/frame_source.h"
 
 namespace dv {
@@ -250,13 +251,9 @@ TEST_F(FrameSourceTest, DamagedPngIsSkippedWithoutTheDecodersOwnLines) {
   std::ofstream(path("a_0.png"), std::ios::binary | std::ios::trunc) << bytes;
   writeColor("a_1.png", 1);
   auto src = openFrameSource(dir_.string(), {});
-  Frame f;
-  int n = 0;
-  ::testing::internal::CaptureStderr();
-  while (src->next(f)) ++n;
-  const std::string printed = ::testing::internal::GetCapturedStderr();
-  EXPECT_EQ(n, 1);
-  EXPECT_EQ(printed, "");
+  const test::FramesRead read = test::readAllFrames(*src);
+  EXPECT_EQ(read.frames, 1);
+  EXPECT_EQ(read.printed, "");
   ASSERT_EQ(src->skipped().size(), 1u);
   EXPECT_NE(src->skipped()[0].reason.find("IDAT chunk at byte"), std::string::npos) << src->skipped()[0].reason;
 }

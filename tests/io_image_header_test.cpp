@@ -9,6 +9,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "frame_count.h"
 #include "io/frame_source.h"
 #include "io/image_header.h"
 
@@ -149,13 +150,9 @@ TEST_F(ImageHeaderSourceTest, DamagedHeaderIsSkippedWithoutTheDecodersOwnLines) 
   write("a_1.bmp", bmp);
   write("a_2.png", encoded(".png", 8, 8, 3));
   auto src = openFrameSource(dir_.string(), {});
-  Frame f;
-  int n = 0;
-  ::testing::internal::CaptureStderr();
-  while (src->next(f)) ++n;
-  const std::string printed = ::testing::internal::GetCapturedStderr();
-  EXPECT_EQ(n, 1);
-  EXPECT_EQ(printed, "");
+  const test::FramesRead read = test::readAllFrames(*src);
+  EXPECT_EQ(read.frames, 1);
+  EXPECT_EQ(read.printed, "");
   EXPECT_EQ(src->skipped().size(), 2u);
 }
 

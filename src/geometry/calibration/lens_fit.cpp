@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 
+#include "geometry/calibration/camera_frame.h"
+
 namespace dv {
 
 namespace {
@@ -124,10 +126,8 @@ struct LensPointResidual {
   LensPointResidual(FieldPoint p, ImagePx px, double sigma) : p(p), px(px), sigma(sigma) {}
   template <typename T>
   bool operator()(const T* intr, const T* lens, const T* rot, const T* pos, T* r) const {
-    const T rel[3] = {T(p.x) - pos[0], T(p.y) - pos[1], T(p.z) - pos[2]};
     T pc[3];
-    ceres::AngleAxisRotatePoint(rot, rel, pc);
-    if (!(pc[2] > T(1e-6))) {
+    if (!pointInCameraFrame(p, rot, pos, pc)) {
       r[0] = r[1] = T(1e4);
       return true;
     }

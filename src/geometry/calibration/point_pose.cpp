@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "geometry/calibration/camera_frame.h"
+
 namespace dv {
 
 namespace {
@@ -18,11 +20,8 @@ struct PinholeResidual {
   PinholeResidual(FieldPoint p, ImagePx undistorted, double cx, double cy) : p(p), q(undistorted), cx(cx), cy(cy) {}
   template <typename T>
   bool operator()(const T* f, const T* rot, const T* pos, T* r) const {
-    const T rel[3] = {T(p.x) - pos[0], T(p.y) - pos[1], T(p.z) - pos[2]};
     T pc[3];
-    ceres::AngleAxisRotatePoint(rot, rel, pc);
-    if (!(pc[2] > T(1e-6))) {
-      // Behind the camera: flat and large, so that the solver turns away.
+    if (!pointInCameraFrame(p, rot, pos, pc)) {
       r[0] = r[1] = T(1e4);
       return true;
     }
