@@ -11,7 +11,11 @@
 # for another machine: what is measured is then what serving the console
 # costs serve. BROWSER_IDLE=1 runs them under SCHED_IDLE as well (closer
 # still to another machine); BROWSER_NICE=0 shows the worst case of
-# browsers on the vision machine itself.
+# browsers on the vision machine itself. SERVE_CPUS and BROWSER_CPUS (taskset
+# lists, e.g. 0 and 1) give serve and the browsers cores of their own: the
+# nearest this machine comes to browsers on the operators' laptops, since
+# serve's console threads then compete with its cameras only. REPEAT=N
+# alternates N runs of each, so that run-to-run spread shows.
 #   scripts/console_bench.sh [BUILD_DIR] [SITE.yaml] [SECONDS]
 set -euo pipefail
 build=${1:-build}
@@ -26,7 +30,7 @@ port=$((18000 + $$ % 1000))
 
 run() {  # run LABEL BROWSERS
   local label=$1 browsers=$2 pids=()
-  "$cli" serve "$site" --http "127.0.0.1:$port" --quiet --duration "$seconds" \
+  ${SERVE_CPUS:+taskset -c $SERVE_CPUS} "$cli" serve "$site" --http "127.0.0.1:$port" --quiet --duration "$seconds" \
     --status-file "$work/status.json" >"$work/$label.out" 2>"$work/$label.log" &
   local serve=$!
   for _ in $(seq 100); do grep -q "console: http" "$work/$label.log" 2>/dev/null && break; sleep 0.2; done
@@ -37,7 +41,7 @@ run() {  # run LABEL BROWSERS
         echo "<iframe src=\"http://127.0.0.1:$port/$p.html\" width=1280 height=900></iframe>"
       done
     } >"$work/all$b.html"
-    ${BROWSER_IDLE:+chrt -i 0} nice -n "${BROWSER_NICE:-19}" chromium --headless --no-sandbox --disable-gpu --user-data-dir="$work/profile$b" \
+    ${BROWSER_CPUS:+taskset -c $BROWSER_CPUS} ${BROWSER_IDLE:+chrt -i 0} nice -n "${BROWSER_NICE:-19}" chromium --headless --no-sandbox --disable-gpu --user-data-dir="$work/profile$b" \
       --window-size=1400,1000 --remote-debugging-port=0 "file://$work/all$b.html" >/dev/null 2>&1 &
     pids+=($!)
   done
@@ -65,6 +69,9 @@ PY
   grep -h "serve: .* s" "$work/$label.out" | sed "s/^/$label /"
 }
 
-echo "console_bench: $site, $seconds s per run, $(nproc) cores, browsers at nice ${BROWSER_NICE:-19}"
-run none 0
-run browsers 2
+echo "console_bench: $site, $seconds s per run, $(nproc) cores, browsers at nice ${BROWSER_NICE:-19}" \
+  "${SERVE_CPUS:+, serve on cpu $SERVE_CPUS}${BROWSER_CPUS:+, browsers on cpu $BROWSER_CPUS}"
+for i in $(seq "${REPEAT:-1}"); do
+  run none 0
+  run browsers 2
+done
