@@ -294,6 +294,14 @@ TEST(GenicamCameraTest, InterruptUnblocksAGrab) {
   GenicamSource src(cam.deviceId());
   src.applySettings({{"Width", "64"}, {"Height", "64"}, {"AcquisitionFrameRate", "0.2"}});  // a frame every 5 s
   ASSERT_EQ(grabFrames(src, 1).size(), 1u);
+  {
+    // The fake camera may send a second frame right after the first while
+    // the new rate takes hold: drain until a grab finds the queue empty.
+    Frame f;
+    std::string why;
+    for (int i = 0; i < 5 && src.grab(f, 0.5, why) == GrabStatus::Frame; ++i) {
+    }
+  }
   auto waiting = std::async(std::launch::async, [&] {
     Frame f;
     std::string why;
