@@ -3,9 +3,10 @@
 // and goal lines, in the corner, between the lines and the wall), under the
 // uneven-light preset (3:1 across the image, a sun patch, a shadow). The
 // CPU's default coarse search, its full search and the OpenCL backend must
-// agree everywhere, all find a ball wholly in the image, and at the same
-// place: one of the independent renderer's frames had a ball by the touch
-// line that only the coarse search lost.
+// agree everywhere, all find every ball at least half in the image (a ball
+// cut by the border makes no blob: detection/border_balls.h), and at the
+// same place: one of the independent renderer's frames had a ball by the
+// touch line that only the coarse search lost.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,12 +26,12 @@ namespace {
 struct Placement {
   std::string where;
   FieldMm ball;
-  bool whole = true;  // the whole ball is in the image
+  bool whole = true;  // the whole ball is in the image (else at least half)
 };
 
 // Ball centers at the image's four edges, k ball radii inside (k = 0: half
-// of the ball in view), wherever that lies within the walls; and on the
-// field's edges in view.
+// of the ball in view, 0.25: 66 %, 0.5: 80 %), wherever that lies within
+// the walls; and on the field's edges in view.
 std::vector<Placement> placements(const SceneSpec& spec) {
   const CameraModel cam(spec.cameras[0].calib);
   const double w = spec.cameras[0].calib.image_width, h = spec.cameras[0].calib.image_height;
@@ -49,7 +50,7 @@ std::vector<Placement> placements(const SceneSpec& spec) {
   } edges[] = {{"left", 0, 0.4 * h, 1, 0}, {"right", w - 1, 0.6 * h, -1, 0}, {"top", 0.35 * w, 0, 0, 1},
                {"bottom", 0.65 * w, h - 1, 0, -1}};
   for (const auto& e : edges)
-    for (double k : {0.0, 0.5, 1.5}) {
+    for (double k : {0.0, 0.25, 0.5, 1.5}) {
       const auto p = cam.imageToField({e.u + e.du * k * r_px, e.v + e.dv * k * r_px}, r);
       if (!p || std::abs(p->x) > half_x || std::abs(p->y) > half_y) continue;
       char name[64];
@@ -115,18 +116,18 @@ void checkEdges(SceneSpec spec, size_t min_placements) {
     const double err = a ? std::hypot(a->x - pl.ball.x, a->y - pl.ball.y) : -1;
     std::printf("  %-40s (%7.1f, %7.1f): coarse %s, full %s, opencl %s; error %.2f mm\n", pl.where.c_str(), pl.ball.x,
                 pl.ball.y, a ? "yes" : "NO", b ? "yes" : "NO", c ? "yes" : "NO", err);
-    // All three agree everywhere; a ball cut by the image border is not
-    // looked for yet (a peak needs a side blob's disc in view, score_windows.h).
+    // All three agree everywhere and find every ball at least half in view.
     EXPECT_TRUE(a.has_value() == b.has_value() && a.has_value() == c.has_value()) << pl.where;
-    if (pl.whole) EXPECT_TRUE(a && b && c) << pl.where;
+    EXPECT_TRUE(a && b && c) << pl.where;
     if (a && b) EXPECT_LT(std::hypot(a->x - b->x, a->y - b->y), 1.0) << pl.where << ": coarse vs full";
     if (a && c) EXPECT_LT(std::hypot(a->x - c->x, a->y - c->y), 1.0) << pl.where << ": coarse vs OpenCL";
     if (a) EXPECT_LT(err, 10.0) << pl.where;
     found += a && b && c;
     whole += pl.whole;
   }
-  std::printf("  found by all three searches: %d of %zu placements (%d with the whole ball in the image)\n", found,
-              where.size(), whole);
+  std::printf("  found by all three searches: %d of %zu placements (%d with the whole ball in the image, the others "
+              "at least half)\n",
+              found, where.size(), whole);
 }
 
 SceneSpec unevenLight() { return loadScene(std::string(DV_SOURCE_DIR) + "/config/scenes/uneven_light.yaml"); }

@@ -28,7 +28,11 @@ struct Codec {
   // Held to every bar; else to the ball's recall only. H.265 at 3 Mbit/s
   // leaves an orange ghost for four frames where the ball lay before its
   // kick, taken for a second ball (0.21 false balls per frame), and misses
-  // 3 of 288 robots: open, printed in the table.
+  // 3 of 288 robots: open, printed in the table. (Frames 1-3 are B-frames:
+  // frame 1 also shows a copy of the ball where frame 4 has it. The moving
+  // ball is found as a streak, the stale copy as a round blob that ranks
+  // above it and takes the ball's one-frame-old track; the echo rule of
+  // detector_balls.cpp needs the moving ball to hold the track.)
   bool all_bars;
 };
 

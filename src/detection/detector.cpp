@@ -13,6 +13,7 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   tracks.reserve(64);
   ball_tracks.reserve(16);
   ball_cands.reserve(1024);
+  border_balls.reserve(64);
   track_match.reserve(64);
   track_taken.reserve(64);
   samples.reserve(512);
@@ -29,6 +30,8 @@ void Detector::Impl::setOptions(const DetectorOptions& o) {
                                        &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
                                        &opt.ref_white};
   for (int k = 0; k < kNumClasses; ++k) classes[k].reference = feature(*refs[k]);
+  if (!border_finder || border_finder->ballRadius() != opt.ball_radius)
+    border_finder.emplace(camera, field.withBoundary(), opt.ball_radius);
 }
 
 void Detector::Impl::reset() {

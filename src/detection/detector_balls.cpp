@@ -36,13 +36,95 @@ float Detector::Impl::explainedByNone(const float rgb[3], const ClippedColor& se
   return rel;
 }
 
+namespace {
+
+// A border ball's strength: its fit's overlap (border_balls.h), full from
+// that of a disc cut cleanly by a line with a pixel of blur.
+constexpr double kBorderFullOverlap = 0.8;
+// How far back and ahead of a tracked ball its echoes lie, in time at its
+// speed: the span of a stream's reference frames (at 60 fps a group of
+// B-frames spans 4 frames), as long as a ball track survives a gap.
+constexpr double kEchoTime = 0.1;
+
+}  // namespace
+
+// The ball's color in one frame, as every ball candidate is judged: nearer
+// to the orange class than to every other class (the color it may have
+// had before a channel clipped counts: an overexposed ball looks
+// yellowish), or a round blob no pattern class explains (explainedByNone:
+// a ball of another shade than the one expected). A streak is the object's
+// color mixed with the carpet it crossed: it is compared with each class's
+// mixing line from the field color.
+class Detector::Impl::BallColorJudge final : public BallColorTest {
+ public:
+  BallColorJudge(const Impl& d, float min_brightness)
+      : d_(d),
+        orange_(d.classes[kOrange].color),
+        mapped_orange_(d.color_map.apply(d.classes[kOrange].reference)),
+        min_brightness_(min_brightness) {}
+
+  // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
+  // nearest of the other classes.
+  double confidence(const float rgb[3], bool streak, int* nearest = nullptr) const {
+    const ClippedColor seen(rgb);
+    if (seen.saturated()) return 0;
+    const ColorVec& field_color = d_.frame_color[kField];
+    auto classDistance = [&](const ColorVec& c) {
+      return streak ? streakColorDistance(seen, field_color, c) : seen.distance(c);
+    };
+    float d_or = classDistance(orange_);
+    if (d_.color_map.valid()) d_or = std::min(d_or, classDistance(mapped_orange_));
+    float d_neg = std::numeric_limits<float>::max();
+    int nearest_neg = kField;
+    for (int k : {kField, kWhite, kPink, kGreen, kYellow, kBlue}) {
+      const float dk = k == kField ? seen.distance(field_color) : classDistance(d_.frame_color[k]);
+      if (dk < d_neg) d_neg = dk, nearest_neg = k;
+    }
+    if (nearest) *nearest = nearest_neg;
+    const float unexplained = streak ? 0.f : d_.explainedByNone(rgb, seen, min_brightness_);
+    if (d_or >= d_neg && unexplained <= 1) return 0;
+    const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
+    return std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
+  }
+  // As confidence() > 0, with the carpet (most of what the border's probes
+  // see) ruled out first: a color nearer to the field than to orange and
+  // within the field class's reach is neither nearer to orange nor
+  // unexplained.
+  bool isBall(const float rgb[3]) const override {
+    const ClippedColor seen(rgb);
+    if (seen.saturated()) return false;
+    const float d_field = seen.distance(d_.frame_color[kField]);
+    const float reach = std::max(kClassSpreads * d_.frame_spread[kField], kMinClassRadius);
+    if (d_field <= reach) {
+      float d_or = seen.distance(orange_);
+      if (d_.color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange_));
+      if (d_field <= d_or) return false;
+    }
+    return confidence(rgb, false) > 0;
+  }
+
+ private:
+  const Impl& d_;
+  ColorVec orange_, mapped_orange_;
+  float min_brightness_;
+};
+
+bool Detector::Impl::isEcho(const BallCandidate& c, double t) const {
+  for (const BallTrack& bt : ball_tracks) {
+    if (!bt.confirmed || bt.t[1] != t || bt.history < 2 || !(bt.t[1] > bt.t[0]) || !(c.rank < bt.rank)) continue;
+    const double dx = bt.pos[1].x - bt.pos[0].x, dy = bt.pos[1].y - bt.pos[0].y;
+    const double step = std::hypot(dx, dy);
+    if (step <= 0) continue;
+    const double reach = step / (bt.t[1] - bt.t[0]) * kEchoTime;
+    const double ex = c.pos.x - bt.pos[1].x, ey = c.pos.y - bt.pos[1].y;
+    const double along = (ex * dx + ey * dy) / step, across = std::abs(ex * dy - ey * dx) / step;
+    if (std::abs(along) <= reach && across <= 2 * opt.ball_radius) return true;
+  }
+  return false;
+}
+
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
-  // Learned negatives: everything a ball candidate must be farther from
-  // than from the orange class.
-  const int negatives[] = {kField, kWhite, kPink, kGreen, kYellow, kBlue};
-  const ColorVec orange = classes[kOrange].color;
-  const ColorVec mapped_orange = color_map.apply(classes[kOrange].reference);
   // Strength reference: the median score of this frame's robot blobs.
   score_buf.clear();
   for (const auto& r : robots)
@@ -90,7 +172,33 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (dist(bt.pos[1], r.pose.position) < touch) bt.kick_gate = 30 + reach;
     bt.confirmed = false;
   }
+  const BallColorJudge judge(*this, min_ball_brightness);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
+  // Rules: at least 80 % of the ball is outside every robot's top.
+  auto insideRobot = [&](const FieldMm& p) {
+    for (const auto& r : robots) {
+      if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
+      if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) return true;
+    }
+    return false;
+  };
+  // Temporal consistency: the ball track it continues, if any.
+  auto temporalOf = [&](BallCandidate& c) {
+    if (!tracking || !have_frame || new_scene) return 1.0;
+    double best = std::numeric_limits<double>::max();
+    for (size_t k = 0; k < ball_tracks.size(); ++k) {
+      const BallTrack& bt = ball_tracks[k];
+      double d = dist(c.pos, bt.predicted);
+      if (d >= bt.gate) {
+        // Kicked: ranked behind any candidate on the predicted course.
+        const double from_last = dist(c.pos, bt.pos[1]);
+        if (from_last >= bt.kick_gate) continue;
+        d = bt.gate + from_last;
+      }
+      if (d < best) best = d, c.track = static_cast<int>(k);
+    }
+    return c.track >= 0 ? 1.0 : 0.85;
+  };
   ColorVec field_sum;
   int field_n = 0;
   const double margin = 50;
@@ -101,48 +209,17 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
         p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
       continue;
-    // Against every class, the blob counts with the colors it may have
-    // had before a channel clipped (an overexposed ball looks yellowish).
-    const ClippedColor seen(b.rgb);
-    if (seen.saturated()) continue;
-    // A streak is the object's color mixed with the carpet it crossed:
-    // it is compared with each class's mixing line from the field color.
-    const ColorVec& field_color = frame_color[kField];
-    auto classDistance = [&](const ColorVec& c) {
-      return b.streak ? streakColorDistance(seen, field_color, c) : seen.distance(c);
-    };
-    float d_or = classDistance(orange);
-    if (color_map.valid()) d_or = std::min(d_or, classDistance(mapped_orange));
-    float d_neg = std::numeric_limits<float>::max();
+    if (ClippedColor(b.rgb).saturated()) continue;
     int nearest_neg = kField;
-    for (int k : negatives) {
-      const float d = k == kField ? seen.distance(field_color) : classDistance(frame_color[k]);
-      if (d < d_neg) d_neg = d, nearest_neg = k;
-    }
-    // Orange is also whatever round blob none of the pattern classes
-    // explains, on the warm side between the frame's pink and yellow
-    // (explainedByNone): a ball of another shade than the one expected.
-    const float unexplained = b.streak ? 0.f : explainedByNone(b.rgb, seen, min_ball_brightness);
-    if (d_or >= d_neg && unexplained <= 1) {
+    const double color_conf = judge.confidence(b.rgb, b.streak, &nearest_neg);
+    if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
         ++field_n;
       }
       continue;
     }
-    // Rules: at least 80 % of the ball is outside every robot's top.
-    bool inside = false;
-    for (const auto& r : robots) {
-      if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
-      if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) {
-        inside = true;
-        break;
-      }
-    }
-    if (inside) continue;
-    const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
-    const double color_conf =
-        std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
+    if (insideRobot(p)) continue;
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength)
@@ -150,28 +227,39 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     BallCandidate c;
     c.blob = i;
     c.pos = p;
-    double temporal = 1.0;
-    if (tracking && have_frame && !new_scene) {
-      temporal = 0.85;
-      double best = std::numeric_limits<double>::max();
-      for (size_t k = 0; k < ball_tracks.size(); ++k) {
-        const BallTrack& bt = ball_tracks[k];
-        double d = dist(p, bt.predicted);
-        if (d >= bt.gate) {
-          // Kicked: ranked behind any candidate on the predicted course.
-          const double from_last = dist(p, bt.pos[1]);
-          if (from_last >= bt.kick_gate) continue;
-          d = bt.gate + from_last;
-        }
-        if (d < best) best = d, c.track = static_cast<int>(k);
-      }
-      if (c.track >= 0) temporal = 1.0;
-    }
+    const double temporal = temporalOf(c);
     c.confidence = color_conf * strength * temporal;
+    // Beyond full strength the stronger blob ranks first among equals.
+    c.rank = b.streak || strength_ref <= 0 ? c.confidence : color_conf * b.score / (0.4 * strength_ref) * temporal;
     if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
   }
+  // Balls cut by the image border, which make no blob (border_balls.h).
+  // Such a ball's own blob, where part of it peaked, lies inward of its
+  // center: the fit of the visible arc stands for it.
+  border_balls.clear();
+  if (frame_view.image && border_finder) border_finder->find(frame_view, judge, border_balls);
+  for (size_t k = 0; k < border_balls.size(); ++k) {
+    const BorderBall& bb = border_balls[k];
+    BallCandidate c;
+    c.border = static_cast<int>(k);
+    c.pos = {bb.position.x, bb.position.y};
+    const double color_conf = judge.confidence(bb.rgb, false);
+    if (color_conf <= 0 || insideRobot(c.pos)) continue;
+    c.confidence = color_conf * std::min(1.0, bb.overlap / kBorderFullOverlap) * temporalOf(c);
+    c.rank = c.confidence;
+    if (c.confidence < opt.min_ball_confidence) continue;
+    ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
+                                    [&](const BallCandidate& o) {
+                                      return o.border < 0 && !blobs[o.blob].streak &&
+                                             dist(o.pos, c.pos) < 4 * opt.ball_radius;
+                                    }),
+                     ball_cands.end());
+    ball_cands.push_back(c);
+  }
   std::sort(ball_cands.begin(), ball_cands.end(),
-            [](const BallCandidate& a, const BallCandidate& b) { return a.confidence > b.confidence; });
+            [](const BallCandidate& a, const BallCandidate& b) {
+              return a.confidence != b.confidence ? a.confidence > b.confidence : a.rank > b.rank;
+            });
   // One ball per place: weaker candidates within a ball diameter go.
   int kept = 0;
   for (size_t i = 0; i < ball_cands.size(); ++i) {
@@ -185,18 +273,21 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // kicked from a robot) or where nothing else in the frame is a ball: a
   // colored region that stands out is weaker evidence than a round blob.
   bool round_ball = false;
-  for (const auto& c : ball_cands) round_ball |= !blobs[c.blob].streak;
+  auto isStreak = [&](const BallCandidate& c) { return c.blob >= 0 && blobs[c.blob].streak; };
+  for (const auto& c : ball_cands) round_ball |= !isStreak(c);
   if (round_ball) {
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
-                                    [&](const BallCandidate& c) { return blobs[c.blob].streak && c.track < 0; }),
+                                    [&](const BallCandidate& c) { return isStreak(c) && c.track < 0; }),
                      ball_cands.end());
   }
 
   // Learn orange from a convincing ball, the field from the clutter.
   const float fp = static_cast<float>(opt.retention_force);
   const float fr = static_cast<float>(opt.reference_force);
-  // (A streak's color is diluted by the carpet it passed over.)
-  if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && !blobs[ball_cands[0].blob].streak)
+  // (A streak's color is diluted by the carpet it passed over; a border
+  // ball's is its visible part's, judged by pixels.)
+  if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && ball_cands[0].blob >= 0 &&
+      !blobs[ball_cands[0].blob].streak)
     classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
   if (field_n > 0) {
     for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
@@ -214,10 +305,20 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         bt.history = 2;
         ++bt.hits;
         bt.confirmed = true;
+        bt.rank = c.rank;
       } else {
         c.track = -1;
       }
     }
+    // What continues no track but lies on the course of a ball tracked in
+    // this frame, within the distance it covers in kEchoTime, and ranks
+    // below it, is an echo of that ball: a compressed stream's stale or
+    // borrowed blocks (a B-frame copies the ball from the frames before and
+    // after) show it where it lay and where it will be. One ball cannot be
+    // in two places on its own course.
+    ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
+                                    [&](const BallCandidate& c) { return c.track < 0 && isEcho(c, t); }),
+                     ball_cands.end());
     // Unconfirmed ball tracks survive a short gap (flicker, occlusion).
     ball_tracks.erase(std::remove_if(ball_tracks.begin(), ball_tracks.end(),
                                      [&](const BallTrack& bt) {
@@ -240,6 +341,12 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   for (const auto& c : ball_cands) {
     BallDetection d;
     d.confidence = static_cast<float>(std::clamp(c.confidence, 0.0, 1.0));
+    if (c.border >= 0) {
+      d.position = border_balls[c.border].position;
+      d.pixel = border_balls[c.border].center;
+      out.balls.push_back(d);
+      continue;
+    }
     const FieldMm at_plane = raw_positions[c.blob];
     const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
     std::optional<FieldPoint> fp3;

@@ -11,11 +11,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "detection/blob_index.h"
+#include "detection/border_balls.h"
 #include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
@@ -128,12 +130,15 @@ struct BallTrack {
   FieldMm predicted;
   double gate = 0;       // around the prediction
   double kick_gate = 0;  // around the last position, next to a robot
+  double rank = 0;       // of the candidate that continued it this frame
 };
 
 struct BallCandidate {
-  int blob = -1;
+  int blob = -1;    // a blob, or -1 with
+  int border = -1;  // a ball cut by the image border (Impl::border_balls)
   FieldMm pos;
   double confidence = 0;
+  double rank = 0;  // orders equal confidences: the stronger evidence first
   int track = -1;
 };
 
@@ -393,6 +398,12 @@ struct Detector::Impl {
 
   // --------------------------------------------------------------- balls
   void findBalls(double t, bool tracking, Detections& out);
+  // Whether a color is the ball's in this frame, and how clearly
+  // (detector_balls.cpp): for blobs and the border's samples alike.
+  class BallColorJudge;
+  // Whether candidate c, continuing no track, is an echo of a ball tracked
+  // in this frame (t): on its course and ranked below it.
+  bool isEcho(const BallCandidate& c, double t) const;
   // For a blob of mean color rgb (seen: the same, clipping considered):
   // 0 unless yellow robots were seen, it is at least min_brightness
   // (r + g + b) bright, about as saturated as the yellow class
@@ -404,6 +415,11 @@ struct Detector::Impl {
 
   std::vector<FieldMm> raw_positions;
   double plane_height = 150;
+
+  // Balls cut by the image border (border_balls.h), found in the frame;
+  // the finder is made for the ball radius it was built with.
+  std::optional<BorderBallFinder> border_finder;
+  std::vector<BorderBall> border_balls;
 
   FrameView frame_view;  // the frame being processed (may be empty)
 

@@ -6,11 +6,8 @@
 #include "pipeline/bayer_full.h"
 
 namespace dv {
-namespace {
 
-// Co-sited RGB at image position (u, v): bilinear between the 2x2 windows'
-// samples around it (sample (x, y) describes pixel (x + 0.5, y + 0.5)).
-void rgbAt(const FrameView& frame, double u, double v, float rgb[3]) {
+void frameRgbAt(const FrameView& frame, double u, double v, float rgb[3]) {
   const cv::Mat& im = *frame.image;
   if (frame.bayer == BayerPattern::None || im.type() == CV_8UC3) {
     const int x = std::clamp(static_cast<int>(std::lround(u)), 0, im.cols - 1);
@@ -28,8 +25,6 @@ void rgbAt(const FrameView& frame, double u, double v, float rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c];
 }
 
-}  // namespace
-
 SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
                         double radius) {
   SeenColor out;
@@ -46,7 +41,7 @@ SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const
       const auto px = camera.fieldToImage({center.x + dx, center.y + dy, center.z});
       if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) continue;
       float c[3];
-      rgbAt(frame, px->u, px->v, c);
+      frameRgbAt(frame, px->u, px->v, c);
       for (int k = 0; k < 3; ++k) sum[k] += c[k];
       ++seen;
     }

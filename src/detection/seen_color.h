@@ -26,6 +26,11 @@ struct SeenColor {
   double share = 0;  // share of the disc inside the image, 0..1
 };
 
+// Co-sited RGB (0..255) at image position (u, v): bilinear between the
+// 2x2 windows' samples around it (sample (x, y) describes pixel
+// (x + 0.5, y + 0.5)); a BGR frame's nearest pixel. Clamped to the image.
+void frameRgbAt(const FrameView& frame, double u, double v, float rgb[3]);
+
 // Lattice points across the disc.
 inline constexpr int kSeenColorSteps = 9;
 
