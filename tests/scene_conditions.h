@@ -114,7 +114,7 @@ inline void sweepCondition(const Condition& c) {
     EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
     EXPECT_GE(s.ballRecall(), 0.99);
     EXPECT_GE(s.ballPrecision(), 0.98);
-    EXPECT_GE(s.recall(), half ? 0.8 : 0.97);
+    EXPECT_GE(s.recall(), half ? 0.95 : 0.99);
   }
 }
 

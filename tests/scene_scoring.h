@@ -147,7 +147,12 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
               std::hypot(out.robots[i].position.x - t.x(), out.robots[i].position.y - t.y());
           if (!used[i] && d < best_d) best_d = d, best = static_cast<int>(i);
         }
-        if (best < 0) continue;
+        if (best < 0) {
+          if (std::getenv("DV_MISSES"))  // which robots a sweep lost, and how many side blobs it had
+            std::printf("missed: %s %u at (%.0f, %.0f), side blobs seen %d\n",
+                        team == Team::Yellow ? "yellow" : "blue", t.robot_id(), t.x(), t.y(), sides);
+          continue;
+        }
         used[best] = true;
         ++s.matched;
         s.detectable_matched += complete;
