@@ -103,18 +103,16 @@ TEST_F(ConsoleBrowser, FieldPageDrawsTheRobotsEveryCameraReports) {
 TEST_F(ConsoleBrowser, CameraPageLoadsFramesOfTheSizeItAsked) {
   WebDriver& d = *driver_;
   d.navigate(serve_->url("/camera.html?camera=1"));
-  ASSERT_TRUE(d.waitUntil("const i = document.getElementById('snapshot'); return Number(i.dataset.loaded) >= 3"))
+  // The page keeps replacing the image: note one as it loads.
+  d.execute(
+      "const i = document.getElementById('snapshot'); i.addEventListener('load', () => { "
+      "if (i.naturalWidth > 0) window.loadedImage = [i.naturalWidth, i.naturalHeight, "
+      "new URL(i.src).searchParams.get('width'), i.src]; }); return true");
+  ASSERT_TRUE(d.waitUntil("const i = document.getElementById('snapshot'); "
+                          "return Number(i.dataset.loaded) >= 3 && Array.isArray(window.loadedImage)"))
       << d.execute("return document.getElementById('snapshot').src");
-  // The page keeps replacing the image; read it between a load and the next request.
-  json img;
-  for (int tries = 0; tries < 100; ++tries) {
-    img = d.execute(
-        "const i = document.getElementById('snapshot'); "
-        "return [i.complete ? i.naturalWidth : 0, i.complete ? i.naturalHeight : 0, "
-        "new URL(i.src).searchParams.get('width'), i.src]");
-    if (img.is_array() && img[0].is_number() && img[0].get<int>() > 0) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const json img = d.execute("return window.loadedImage");
+  ASSERT_TRUE(img.is_array()) << img.dump();
   const int asked = std::stoi(img[2].get<std::string>());
   EXPECT_GT(asked, 500) << img.dump();  // a 1280 px window asks for its width, at most 960
   EXPECT_LE(asked, 960) << img.dump();
@@ -139,13 +137,17 @@ TEST_F(ConsoleBrowser, CameraPageSwitchesToAGridLayerAndHoversOnTheField) {
   const int gw = grid["width"], gh = grid["height"];
   d.navigate(serve_->url("/camera.html?camera=0"));
   ASSERT_TRUE(d.waitUntil("return Number(document.getElementById('snapshot').dataset.loaded) >= 1"));
+  // The page keeps replacing the image, at once when a picture took longer
+  // than its interval (a loaded machine): note, as it loads, the first one
+  // with these layers.
+  d.execute(
+      "const i = document.getElementById('snapshot'); i.addEventListener('load', () => { "
+      "const q = new URL(i.src).searchParams; "
+      "if (!window.seen && i.naturalWidth > 0 && q.get('layer') == 'score,blobs,lines,detections') "
+      "window.seen = [i.naturalWidth, i.naturalHeight, Number(q.get('width'))]; }); return true");
   d.click(d.find("input[name=base][value=score]"));
   d.click(d.find("#layer-blobs"));
-  // The page keeps replacing the image: note one that loaded with these layers.
-  ASSERT_TRUE(d.waitUntil(
-      "const i = document.getElementById('snapshot'); const q = new URL(i.src).searchParams; "
-      "if (!(i.complete && i.naturalWidth > 0 && q.get('layer') == 'score,blobs,lines,detections')) return false; "
-      "window.seen = [i.naturalWidth, i.naturalHeight, Number(q.get('width'))]; return true"))
+  ASSERT_TRUE(d.waitUntil("return Array.isArray(window.seen)"))
       << d.execute("return document.getElementById('snapshot').src");
   const json seen = d.execute("return window.seen");
   const int width = std::min(gw, seen[2].get<int>());
