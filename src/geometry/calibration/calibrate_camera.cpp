@@ -37,7 +37,9 @@ LineObservation observeLinesAtScale(const cv::Mat& image, const FieldModel& fiel
   lp.half_width_px = obs.half_width_px;
   obs.mask = detectLinePixels(image, lp);
   obs.distance = lineDistanceTransform(obs.mask);
-  obs.pixels = maskPixels(obs.mask, 60000);
+  obs.mask_pixels = maskPixels(obs.mask, 60000);
+  obs.pixels = obs.mask_pixels;
+  refineToLineCentres(lineBrightness(image), obs.half_width_px, obs.pixels);
   obs.groups = groupSegments(detectLineSegments(obs.mask));
   // Pixels only for groups long enough to matter.
   const double min_extent = 0.15 * std::min(image.cols, image.rows);
@@ -65,6 +67,20 @@ void finish(CalibrationOutcome& r, const LineObservation& obs, const FieldModel&
   QualityGateOptions g;
   g.region = region;
   r.problem = qualityProblem(r.calibration, r.measures, g);
+}
+
+// Lens terms beyond the league's model. The lens fit's bins take the mean of
+// the mask pixels across the painted width (they need both sides of the
+// line), and with a lens the league's model does not fit, where its nested
+// fits end depends on their start (k2 trades against k and the lines'
+// offsets): it gets the mask pixels and its own league start fitted on
+// them. A lens the league's model fits keeps the sub-pixel league fit.
+LensFitResult fitLens(const CameraParams& league, const LineObservation& obs, const FieldLineModel& model,
+                      const std::vector<PointCorrespondence>& points, const LineFitOptions& lf) {
+  const CameraParams start = refineOnLines(league, obs.mask_pixels, model, points, lf).params;
+  LensFitResult lens = fitLensOnLines(start, obs.mask_pixels, model, points, lf);
+  if (!lens.lens_used) lens.params = lens.league = league;
+  return lens;
 }
 
 // A camera looking (nearly) straight down sees the field the same from any
@@ -231,7 +247,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
     }
     const auto fit = refineOnLines(pose->params, obs.pixels, model, req.points, lf);
     r.refinement_accepted = fit.improved;
-    r.lens = fitLensOnLines(fit.params, obs.pixels, model, req.points, lf);
+    r.lens = fitLens(fit.params, obs, model, req.points, lf);
     r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
     r.has_pose = true;
     r.symmetry = decidedByPoints(fit.params, w, h);
@@ -269,7 +285,7 @@ CalibrationOutcome calibrateCamera(const cv::Mat& image, const FieldModel& field
                 choice.decision.reason + "; give --near X,Y (roughly where the camera looks) or four points";
     return r;
   }
-  r.lens = fitLensOnLines(choice.params, obs.pixels, model, {}, lf);
+  r.lens = fitLens(choice.params, obs, model, {}, lf);
   r.calibration = r.lens->params.toCalibration(req.camera_id, w, h);
   // Without the height, a view straight down drifts along its unobserved
   // height; ask for it before judging the drifted fit.

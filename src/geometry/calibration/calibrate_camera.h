@@ -46,7 +46,8 @@ struct CalibrationRequest {
 struct LineObservation {
   cv::Mat mask;                // 255 at line pixels
   cv::Mat distance;            // distance transform to the nearest line pixel
-  std::vector<ImagePx> pixels; // thinned list of line pixels
+  std::vector<ImagePx> mask_pixels;  // thinned list of line pixels (mask positions)
+  std::vector<ImagePx> pixels;       // the same moved to their line's centre (sub-pixel)
   std::vector<LineGroup> groups;
   int half_width_px = 3;
 };

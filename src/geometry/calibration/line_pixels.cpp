@@ -110,4 +110,63 @@ std::vector<ImagePx> maskPixels(const cv::Mat& mask, size_t max_count) {
   return out;
 }
 
+namespace {
+
+// Centre of the brightness ridge through sample c on one axis (`at(i)` reads
+// sample i): the profile is climbed to its top and followed down to its foot
+// on either side (at most `reach` samples each way), and the centroid taken of the brightness above the
+// straight baseline between the two feet. The window so fits the line's
+// width along the axis, which grows as the line turns away from it, and no
+// part of a blurred line is cut off. False when nothing rises above the
+// baseline.
+template <typename At>
+bool ridgeCentroid(At at, int c, int reach, double& centre) {
+  // Up to the top first: a mask pixel may sit on the line's flank.
+  const int c0 = c;
+  while (c < c0 + reach && at(c + 1) > at(c)) ++c;
+  while (c > c0 - reach && at(c - 1) > at(c)) --c;
+  int lo = c, hi = c;
+  while (lo > c - reach && at(lo - 1) <= at(lo)) --lo;
+  while (hi < c + reach && at(hi + 1) <= at(hi)) ++hi;
+  if (hi - lo < 2) return false;
+  const double a = at(lo), b = at(hi);
+  double sw = 0, swx = 0;
+  for (int i = lo + 1; i < hi; ++i) {
+    const double wgt = std::max(0.0, at(i) - (a + (b - a) * (i - lo) / double(hi - lo)));
+    sw += wgt, swx += wgt * i;
+  }
+  if (!(sw > 0)) return false;
+  centre = swx / sw;
+  return true;
+}
+
+}  // namespace
+
+void refineToLineCentres(const cv::Mat& gray, int half_width_px, std::vector<ImagePx>& pixels) {
+  CV_Assert(gray.type() == CV_8UC1);
+  const int h = std::max(1, half_width_px);
+  // A line at 60 deg to the axis is twice as wide along it as across.
+  const int reach = 2 * h + 1;
+  const int margin = 2 * reach + 2;
+  for (auto& px : pixels) {
+    const int x = int(px.u), y = int(px.v);
+    if (x < margin || y < margin || x >= gray.cols - margin || y >= gray.rows - margin) continue;
+    const auto at = [&](int yy, int xx) { return double(gray.at<uint8_t>(yy, xx)); };
+    const auto ridge = [&](int dx, int dy) { return 2 * at(y, x) - at(y - dy * h, x - dx * h) - at(y + dy * h, x + dx * h); };
+    // Along the axis on which the ridge is stronger; a second pass from the
+    // first's estimate, so that a pixel on the line's flank climbs to its top.
+    double c = 0;
+    if (ridge(1, 0) >= ridge(0, 1)) {  // the line runs up and down: its centre along the row
+      const auto row = [&](int i) { return at(y, i); };
+      if (ridgeCentroid(row, x, reach, c) && ridgeCentroid(row, int(std::lround(c)), reach, c) && std::abs(c - x) <= h)
+        px.u = c;
+    } else {
+      const auto column = [&](int i) { return at(i, x); };
+      if (ridgeCentroid(column, y, reach, c) && ridgeCentroid(column, int(std::lround(c)), reach, c) &&
+          std::abs(c - y) <= h)
+        px.v = c;
+    }
+  }
+}
+
 }  // namespace dv

@@ -48,7 +48,7 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
   const Eigen::Matrix<double, kParams, 1> x0 = pack(params), h = steps(params);
   auto residual = [&](const CameraParams& p, const LinePixelMatch& m, double& r) {
     double xy[2];
-    if (!backProjectPixel(p.intrinsics, p.rotation, p.position, m.px.u, m.px.v, 0.0, xy)) return false;
+    if (!backProjectPixelLens(p.intrinsics, p.lens, p.rotation, p.position, m.px.u, m.px.v, 0.0, xy)) return false;
     r = model.elements()[m.element].signedDistance(xy) / m.mm_per_px;
     return true;
   };
@@ -63,7 +63,7 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
   std::map<std::tuple<int, int, int>, Cell> cells;
   CameraParams plus = params, minus = params;
   for (const auto& m : matches) {
-    double r0;
+    double r0 = 0;
     if (!residual(params, m, r0)) continue;
     Eigen::Matrix<double, kParams, 1> row;
     bool ok = true;
@@ -71,7 +71,7 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
       Eigen::Matrix<double, kParams, 1> xp = x0, xm = x0;
       xp[j] += h[j], xm[j] -= h[j];
       unpack(xp, plus), unpack(xm, minus);
-      double rp, rm;
+      double rp = 0, rm = 0;
       ok = residual(plus, m, rp) && residual(minus, m, rm);
       row[j] = (rp - rm) / (2 * h[j]);
     }
@@ -120,7 +120,7 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
       for (int gu = 0; gu < 12; ++gu) {
         const double u = (gu + 0.5) * o.width / 12.0, v = (gv + 0.5) * o.height / 12.0;
         double xy[2];
-        if (!backProjectPixel(params.intrinsics, params.rotation, params.position, u, v, z, xy)) continue;
+        if (!backProjectPixelLens(params.intrinsics, params.lens, params.rotation, params.position, u, v, z, xy)) continue;
         if (!area.contains({xy[0], xy[1]})) continue;
         Eigen::Matrix<double, 2, kParams> g;
         bool ok = true;
@@ -129,8 +129,8 @@ std::optional<PredictedFieldError> predictFieldError(const CameraParams& params,
           xp[j] += h[j], xm[j] -= h[j];
           unpack(xp, plus), unpack(xm, minus);
           double a[2], b[2];
-          ok = backProjectPixel(plus.intrinsics, plus.rotation, plus.position, u, v, z, a) &&
-               backProjectPixel(minus.intrinsics, minus.rotation, minus.position, u, v, z, b);
+          ok = backProjectPixelLens(plus.intrinsics, plus.lens, plus.rotation, plus.position, u, v, z, a) &&
+               backProjectPixelLens(minus.intrinsics, minus.lens, minus.rotation, minus.position, u, v, z, b);
           g(0, j) = (a[0] - b[0]) / (2 * h[j]), g(1, j) = (a[1] - b[1]) / (2 * h[j]);
         }
         if (!ok) continue;
