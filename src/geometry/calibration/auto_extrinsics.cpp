@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
@@ -249,21 +250,26 @@ AutoExtrinsicsResult findPoseAutomatically(const LineObservation& obs, const Pix
   LineFitOptions lf;
   lf.fix_height = o.camera_height_mm.has_value();
   lf.gates_px = {24, 12, 6, 3};
-  lf.max_pixels = 8000;
-  int tried = 0;
+  lf.max_pixels = 3000;  // enough to rank the candidates; the polish takes 20000
+  std::vector<CameraParams> starts;
   for (const auto& h : hyps) {
-    if (tried >= o.max_refined_hypotheses) break;
+    if (int(starts.size()) >= o.max_refined_hypotheses) break;
     const auto pose = solvePointPose(h.points, dist, po);
     if (!pose || pose->rms_px > 10) continue;
     // A camera the quality gate would refuse for its height is not worth refining.
     if (!(pose->params.position[2] > 300 && pose->params.position[2] < 30000)) continue;
-    // Same pose as an earlier candidate: nothing new to learn.
+    // Same pose as an earlier start: nothing new to learn.
     bool seen = false;
-    for (const auto& c : candidates)
-      if (apart(c.params, pose->params) < 100) seen = true;
-    if (seen) continue;
-    ++tried;
-    auto fit = refineOnLines(pose->params, obs.pixels, model, {}, lf);
+    for (const auto& c : starts)
+      if (apart(c, pose->params) < 100) seen = true;
+    if (!seen) starts.push_back(pose->params);
+  }
+  // The refinements are independent: one thread each (the cores share them).
+  std::vector<std::future<LineFitResult>> fits;
+  for (const auto& start : starts)
+    fits.push_back(std::async(std::launch::async, [&, start] { return refineOnLines(start, obs.pixels, model, {}, lf); }));
+  for (auto& f : fits) {
+    const LineFitResult fit = f.get();
     candidates.push_back({fit.params, fit.cost_after});
   }
   if (candidates.empty()) {

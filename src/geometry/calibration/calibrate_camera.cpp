@@ -74,11 +74,21 @@ void finish(CalibrationOutcome& r, const LineObservation& obs, const FieldModel&
 // line), and with a lens the league's model does not fit, where its nested
 // fits end depends on their start (k2 trades against k and the lines'
 // offsets): it gets the mask pixels and its own league start fitted on
-// them. A lens the league's model fits keeps the sub-pixel league fit.
+// them. Its terms are kept only when they also fit the sub-pixel line
+// centres better than the league fit does: a lens fit that wandered off
+// along a direction the mask pixels do not fix (the principal point of a
+// grazing view) fits them worse. Otherwise the sub-pixel league fit stays.
 LensFitResult fitLens(const CameraParams& league, const LineObservation& obs, const FieldLineModel& model,
                       const std::vector<PointCorrespondence>& points, const LineFitOptions& lf) {
   const CameraParams start = refineOnLines(league, obs.mask_pixels, model, points, lf).params;
   LensFitResult lens = fitLensOnLines(start, obs.mask_pixels, model, points, lf);
+  if (lens.lens_used) {
+    const double gate = lf.gates_px.back(), scale = lf.loss_scale_px;
+    const double with_terms = robustLineCost(lens.params, obs.pixels, model, gate, scale);
+    const double without = robustLineCost(league, obs.pixels, model, gate, scale);
+    spdlog::debug("lens terms on the line centres: cost {:.5f} with, {:.5f} without", with_terms, without);
+    if (!(with_terms < without)) lens.lens_used = false;
+  }
   if (!lens.lens_used) lens.params = lens.league = league;
   return lens;
 }
