@@ -114,8 +114,8 @@ namespace {
 
 // Centre of the brightness ridge through sample c on one axis (`at(i)` reads
 // sample i): the profile is climbed to its top and followed down to its foot
-// on either side (at most `reach` samples each way), and the centroid taken of the brightness above the
-// straight baseline between the two feet. The window so fits the line's
+// on either side (at most `reach` samples each way), and the centroid taken
+// of the brightness above the straight baseline between the two feet. The window so fits the line's
 // width along the axis, which grows as the line turns away from it, and no
 // part of a blurred line is cut off. False when nothing rises above the
 // baseline.
@@ -147,7 +147,9 @@ void refineToLineCentres(const cv::Mat& gray, int half_width_px, std::vector<Ima
   const int h = std::max(1, half_width_px);
   // A line at 60 deg to the axis is twice as wide along it as across.
   const int reach = 2 * h + 1;
-  const int margin = 2 * reach + 2;
+  // A pass reads up to 2 reach + 1 samples from where it starts, and the
+  // second starts within h of the pixel.
+  const int margin = h + 2 * reach + 2;
   for (auto& px : pixels) {
     const int x = int(px.u), y = int(px.v);
     if (x < margin || y < margin || x >= gray.cols - margin || y >= gray.rows - margin) continue;
@@ -158,12 +160,13 @@ void refineToLineCentres(const cv::Mat& gray, int half_width_px, std::vector<Ima
     double c = 0;
     if (ridge(1, 0) >= ridge(0, 1)) {  // the line runs up and down: its centre along the row
       const auto row = [&](int i) { return at(y, i); };
-      if (ridgeCentroid(row, x, reach, c) && ridgeCentroid(row, int(std::lround(c)), reach, c) && std::abs(c - x) <= h)
+      if (ridgeCentroid(row, x, reach, c) && std::abs(c - x) <= h &&
+          ridgeCentroid(row, int(std::lround(c)), reach, c) && std::abs(c - x) <= h)
         px.u = c;
     } else {
       const auto column = [&](int i) { return at(i, x); };
-      if (ridgeCentroid(column, y, reach, c) && ridgeCentroid(column, int(std::lround(c)), reach, c) &&
-          std::abs(c - y) <= h)
+      if (ridgeCentroid(column, y, reach, c) && std::abs(c - y) <= h &&
+          ridgeCentroid(column, int(std::lround(c)), reach, c) && std::abs(c - y) <= h)
         px.v = c;
     }
   }
