@@ -337,5 +337,32 @@ TEST(DetectionTracking, EchoesOnAKickedBallsCourseAreNotBalls) {
   }
 }
 
+// H.265's B-frames: the stale copy where the ball lay is as round and
+// stronger than the kicked ball, which blurs into a streak. The streak must
+// take the ball's track and the copy go, also once the ball is round again.
+TEST(DetectionTracking, AStaleCopyWhereTheBallLayLosesToTheStreakThatLeftIt) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  const FieldMm rest{-2250, 0};
+  const double vx = -5400, vy = -3240;  // 6.3 m/s
+  const int kick = 3;
+  for (int f = 0; f < 10; ++f) {
+    const double t = f * kDt, moved = f < kick ? 0 : (f - kick + 1) * kDt;
+    const FieldMm ball{rest.x + vx * moved, rest.y + vy * moved};
+    SceneBuilder s(cam, 900 + f);
+    s.addRobot({Team::Yellow, 1, {rest.x + 130, rest.y + 40}, 3.14});  // the kicker
+    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
+    s.addBall(ball);
+    if (f >= kick && f < kick + 3) s.list.blobs.back().streak = true, s.list.blobs.back().score = 0.6f;
+    if (f >= kick && f < kick + 4) s.addBall({rest.x + 15, rest.y + 5}, 1.2f);  // the stale copy
+    if (f == kick) s.addBall({rest.x + vx * 4 * kDt, rest.y + vy * 4 * kDt}, 1.0f);
+    det.process(s.list, t, out);
+    ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
+    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+    EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace dv

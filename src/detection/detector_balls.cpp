@@ -45,6 +45,8 @@ constexpr double kBorderFullOverlap = 0.8;
 // speed: the span of a stream's reference frames (at 60 fps a group of
 // B-frames spans 4 frames), as long as a ball track survives a gap.
 constexpr double kEchoTime = 0.1;
+// A ball track continued this many frames has an established course.
+constexpr int kEstablishedHits = 3;
 
 }  // namespace
 
@@ -111,7 +113,12 @@ class Detector::Impl::BallColorJudge final : public BallColorTest {
 
 bool Detector::Impl::isEcho(const BallCandidate& c, double t) const {
   for (const BallTrack& bt : ball_tracks) {
-    if (!bt.confirmed || bt.t[1] != t || bt.history < 2 || !(bt.t[1] > bt.t[0]) || !(c.rank < bt.rank)) continue;
+    if (!bt.confirmed || bt.t[1] != t || bt.history < 2 || !(bt.t[1] > bt.t[0])) continue;
+    // Below the ball that holds the track, unless the track has held it
+    // for frames (its course is then better evidence than one blob's
+    // strength) or a streak holds it (a streak's rank is a shape measure
+    // that says nothing against a round blob's).
+    if (!(c.rank < bt.rank || bt.streak || bt.hits >= kEstablishedHits)) continue;
     const double dx = bt.pos[1].x - bt.pos[0].x, dy = bt.pos[1].y - bt.pos[0].y;
     const double step = std::hypot(dx, dy);
     if (step <= 0) continue;
@@ -195,7 +202,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         if (from_last >= bt.kick_gate) continue;
         d = bt.gate + from_last;
       }
-      if (d < best) best = d, c.track = static_cast<int>(k);
+      if (d < best) best = d, c.track = static_cast<int>(k), c.kicked = d >= bt.gate;
     }
     return c.track >= 0 ? 1.0 : 0.85;
   };
@@ -295,7 +302,26 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   }
 
   if (tracking) {
+    // A streak and a round blob where the ball last lay both continuing its
+    // track: the ball was kicked, and the round blob is its stale picture
+    // (a compressed stream's copied blocks). A ball cannot lie still and
+    // move at once, and a copied picture does not blur: the streak takes
+    // the track, the round blob is dropped with the echoes.
     for (auto& c : ball_cands) {
+      if (c.track < 0 || isStreak(c) || dist(c.pos, ball_tracks[c.track].pos[1]) > 2 * opt.ball_radius) continue;
+      for (const auto& s : ball_cands)
+        if (s.track == c.track && isStreak(s) && dist(s.pos, ball_tracks[c.track].pos[1]) > 4 * opt.ball_radius) {
+          c.track = -1, c.stale = true;
+          break;
+        }
+    }
+    // A streak where its track's course puts it is that ball in motion:
+    // nothing else explains both the blur and the place. Such streaks
+    // continue their tracks first, then every candidate by confidence.
+    const auto onCourseStreak = [&](const BallCandidate& c) { return c.track >= 0 && !c.kicked && isStreak(c); };
+    for (const bool first : {true, false})
+    for (auto& c : ball_cands) {
+      if (onCourseStreak(c) != first) continue;
       if (c.track >= 0 && !ball_tracks[c.track].confirmed) {
         BallTrack& bt = ball_tracks[c.track];
         bt.pos[0] = bt.pos[1];
@@ -306,6 +332,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         ++bt.hits;
         bt.confirmed = true;
         bt.rank = c.rank;
+        bt.streak = isStreak(c);
       } else {
         c.track = -1;
       }
@@ -317,7 +344,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // after) show it where it lay and where it will be. One ball cannot be
     // in two places on its own course.
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
-                                    [&](const BallCandidate& c) { return c.track < 0 && isEcho(c, t); }),
+                                    [&](const BallCandidate& c) { return c.stale || (c.track < 0 && isEcho(c, t)); }),
                      ball_cands.end());
     // Unconfirmed ball tracks survive a short gap (flicker, occlusion).
     ball_tracks.erase(std::remove_if(ball_tracks.begin(), ball_tracks.end(),

@@ -131,6 +131,7 @@ struct BallTrack {
   double gate = 0;       // around the prediction
   double kick_gate = 0;  // around the last position, next to a robot
   double rank = 0;       // of the candidate that continued it this frame
+  bool streak = false;   // that candidate was a streak (its rank is of another scale)
 };
 
 struct BallCandidate {
@@ -140,6 +141,8 @@ struct BallCandidate {
   double confidence = 0;
   double rank = 0;  // orders equal confidences: the stronger evidence first
   int track = -1;
+  bool kicked = false; // continues its track only as kicked (outside its course's gate)
+  bool stale = false;  // where a kicked ball lay (Impl::findBalls)
 };
 
 inline double sq(double v) { return v * v; }
