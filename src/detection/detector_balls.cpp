@@ -1,3 +1,4 @@
+#include "detection/ball_silhouette.h"
 #include "detection/detector_impl.h"
 
 namespace dv {
@@ -375,7 +376,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     }
     const FieldMm at_plane = raw_positions[c.blob];
-    const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    // The ball's center from its silhouette (ball_silhouette.h). A far
+    // ball seen from the side often peaks only as a streak; a real streak's
+    // blur is no whole ball's silhouette and keeps its middle.
+    if (px && frame_view.image) {
+      const double r = ballRadiusPx(camera, {c.pos.x, c.pos.y, opt.ball_radius}, opt.ball_radius);
+      ImagePx refined;
+      if (ballSilhouetteCenter(frame_view, judge, *px, r, refined)) px = refined;
+    }
     std::optional<FieldPoint> fp3;
     if (px) fp3 = camera.imageToField(*px, opt.ball_radius);
     d.position = fp3 ? FieldPoint{fp3->x, fp3->y, opt.ball_radius}

@@ -1,0 +1,26 @@
+#pragma once
+// The ball's center in the image from its silhouette. The blob stage puts a
+// ball where its score peaks on the sampling grid: on the lit cap, which is
+// not the center when the light or the camera comes from the side, and only
+// to a grid cell, which from the touch line spans tens of millimetres of
+// field. A sphere's image is (to far below a pixel at these sizes) a disc
+// around its center's image, and its outline does not depend on shading:
+// so the center is the centroid of the ball-colored samples on a lattice
+// finer than a pixel, in a window around the blob, recentred until it
+// settles. The judge of "ball-colored" is the detector's own (the border
+// balls' test), so nothing is tuned to a scene's colors. A silhouette that
+// is too small for a whole ball in view (cut, occluded by a robot) or too
+// large for one (something orange beside it) leaves the blob's place.
+// No allocation.
+#include "core/units.h"
+#include "detection/border_balls.h"
+#include "detection/seen_color.h"
+
+namespace dv {
+
+// The silhouette's center near `start` for a ball of `radius_px` there;
+// false where the silhouette does not look like one whole ball.
+bool ballSilhouetteCenter(const FrameView& frame, const BallColorTest& test, ImagePx start, double radius_px,
+                          ImagePx& center);
+
+}  // namespace dv
