@@ -1,8 +1,9 @@
 // The ball's place from its silhouette (detection/ball_silhouette.h): from
 // the touch line the blob stage puts a far ball where its score peaks on
 // the sampling grid, a cell of tens of millimetres of field there (median
-// error 10.9 mm, up to 43 mm, on a ball rolling away from 2 to 7 m before
-// the silhouette); top-down the peak leans to the lit side. Rendered
+// error 10.8 mm on the placements below, 90 % within 24.7 mm, before the
+// silhouette; 1.7 and 4.8 mm with it); top-down the peak leans to the lit
+// side. Rendered
 // frames, each alone, robots at their true height.
 #include <gtest/gtest.h>
 
@@ -89,7 +90,8 @@ TEST(BallSilhouette, SideViewFarBallsWithinAFewMillimetres) {
 }
 
 // Top-down under 3:1 light with a sun patch: the lit side is not the center
-// (the blob's peak: median 0.85 mm, 90 % 1.44 mm on these placements).
+// (the blob's peak: median 0.85 mm, 90 % 1.44 mm on these placements; the
+// silhouette 0.71 and 1.17 mm).
 TEST(BallSilhouette, TopDownUnevenLightWithinTheBar) {
   std::vector<FieldMm> where;
   for (double x = -3800; x <= -800; x += 600)
@@ -98,8 +100,8 @@ TEST(BallSilhouette, TopDownUnevenLightWithinTheBar) {
   std::printf("top-down, uneven light: %zu of %zu balls, median %.2f mm, 90 %% %.2f mm\n", e.mm.size(), where.size(),
               e.quantile(0.5), e.quantile(0.9));
   EXPECT_EQ(e.missed, 0);
-  EXPECT_LE(e.quantile(0.5), 0.65);
-  EXPECT_LE(e.quantile(0.9), 4.0);
+  EXPECT_LE(e.quantile(0.5), 0.75);
+  EXPECT_LE(e.quantile(0.9), 1.3);
 }
 
 }  // namespace

@@ -5,8 +5,9 @@
 // to a grid cell, which from the touch line spans tens of millimetres of
 // field. A sphere's image is (to far below a pixel at these sizes) a disc
 // around its center's image, and its outline does not depend on shading:
-// so the center is the centroid of the ball-colored samples on a lattice
-// finer than a pixel, in a window around the blob, recentred until it
+// so the center is the centroid of the ball-colored samples on a lattice of
+// a quarter of the ball's image radius (a fraction of a pixel far away),
+// judged once around the blob, the centroid's window recentred until it
 // settles. The judge of "ball-colored" is the detector's own (the border
 // balls' test), so nothing is tuned to a scene's colors. A silhouette that
 // is too small for a whole ball in view (cut, occluded by a robot) or too
