@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "detection/detector.h"
@@ -307,61 +308,73 @@ TEST(DetectionTracking, BouncedAndKickedBallKeepsItsTrack) {
   }
 }
 
+// A ball at rest by its kicker, kicked at 6.3 m/s at frame kKick (the first
+// frame it has left), through frames 0..frames-1 of one detector:
+// `extras` adds what the frame's stream shows besides (the kicker, another
+// robot and the ball are there), `check` judges the detections against
+// where the ball is.
+constexpr int kKick = 3;
+void kickedBall(FieldMm rest, int frames, unsigned seed, const std::function<void(SceneBuilder&, int)>& extras,
+                const std::function<void(const Detections&, FieldMm, int)>& check) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  const double vx = -5400, vy = -3240;
+  for (int f = 0; f < frames; ++f) {
+    const double moved = f < kKick ? 0 : (f - kKick + 1) * kDt;
+    const FieldMm ball{rest.x + vx * moved, rest.y + vy * moved};
+    SceneBuilder s(cam, seed + f);
+    s.addRobot({Team::Yellow, 1, {rest.x + 130, rest.y + 40}, 3.14});  // the kicker
+    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
+    s.addBall(ball);
+    extras(s, f);
+    det.process(s.list, f * kDt, out);
+    check(out, ball, f);
+  }
+}
+
+// Where the kicked ball is four frames after the kick, from its rest.
+FieldMm fourFramesOn(FieldMm rest) { return {rest.x - 5400 * 4 * kDt, rest.y - 3240 * 4 * kDt}; }
+
 // A ball kicked from rest at 6.3 m/s in compressed video: for a few frames
 // the stream keeps a fainter copy where it lay (stale blocks) and, in the
 // first B-frame, one where it will be three frames on (a block borrowed
 // from the next reference frame). Neither is a second ball; a ball off the
 // course, appearing from nowhere, still is.
 TEST(DetectionTracking, EchoesOnAKickedBallsCourseAreNotBalls) {
-  const CameraModel cam(test::topDownCamera());
-  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
-  Detections out;
   const FieldMm rest{2000, 200};
-  const double vx = -5400, vy = -3240;  // 6.3 m/s
-  const int kick = 3;                   // the first frame it has left
-  for (int f = 0; f < 9; ++f) {
-    const double t = f * kDt, moved = f < kick ? 0 : (f - kick + 1) * kDt;
-    const FieldMm ball{rest.x + vx * moved, rest.y + vy * moved};
-    SceneBuilder s(cam, 700 + f);
-    s.addRobot({Team::Yellow, 1, {rest.x + 130, rest.y + 40}, 3.14});  // the kicker
-    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
-    s.addBall(ball);
-    if (f >= kick && f < kick + 4) s.addBall(rest, 0.45f);  // the stale copy
-    if (f == kick) s.addBall({rest.x + vx * 4 * kDt, rest.y + vy * 4 * kDt}, 0.6f);
-    if (f == 7) s.addBall({1500, 1500});  // a ball from nowhere, off the course
-    det.process(s.list, t, out);
-    ASSERT_GE(out.balls.size(), 1u) << "frame " << f;
-    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
-    EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
-    EXPECT_EQ(out.balls.size(), f == 7 ? 2u : 1u) << "frame " << f;
-  }
+  kickedBall(
+      rest, 9, 700,
+      [&](SceneBuilder& s, int f) {
+        if (f >= kKick && f < kKick + 4) s.addBall(rest, 0.45f);  // the stale copy
+        if (f == kKick) s.addBall(fourFramesOn(rest), 0.6f);
+        if (f == 7) s.addBall({1500, 1500});  // a ball from nowhere, off the course
+      },
+      [](const Detections& out, FieldMm ball, int f) {
+        ASSERT_GE(out.balls.size(), 1u) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+        EXPECT_EQ(out.balls.size(), f == 7 ? 2u : 1u) << "frame " << f;
+      });
 }
 
 // H.265's B-frames: the stale copy where the ball lay is as round and
 // stronger than the kicked ball, which blurs into a streak. The streak must
 // take the ball's track and the copy go, also once the ball is round again.
 TEST(DetectionTracking, AStaleCopyWhereTheBallLayLosesToTheStreakThatLeftIt) {
-  const CameraModel cam(test::topDownCamera());
-  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
-  Detections out;
   const FieldMm rest{-2250, 0};
-  const double vx = -5400, vy = -3240;  // 6.3 m/s
-  const int kick = 3;
-  for (int f = 0; f < 10; ++f) {
-    const double t = f * kDt, moved = f < kick ? 0 : (f - kick + 1) * kDt;
-    const FieldMm ball{rest.x + vx * moved, rest.y + vy * moved};
-    SceneBuilder s(cam, 900 + f);
-    s.addRobot({Team::Yellow, 1, {rest.x + 130, rest.y + 40}, 3.14});  // the kicker
-    s.addRobot({Team::Blue, 2, {3000, -1000}, 0});
-    s.addBall(ball);
-    if (f >= kick && f < kick + 3) s.list.blobs.back().streak = true, s.list.blobs.back().score = 0.6f;
-    if (f >= kick && f < kick + 4) s.addBall({rest.x + 15, rest.y + 5}, 1.2f);  // the stale copy
-    if (f == kick) s.addBall({rest.x + vx * 4 * kDt, rest.y + vy * 4 * kDt}, 1.0f);
-    det.process(s.list, t, out);
-    ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
-    EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
-    EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
-  }
+  kickedBall(
+      rest, 10, 900,
+      [&](SceneBuilder& s, int f) {
+        if (f >= kKick && f < kKick + 3) s.list.blobs.back().streak = true, s.list.blobs.back().score = 0.6f;
+        if (f >= kKick && f < kKick + 4) s.addBall({rest.x + 15, rest.y + 5}, 1.2f);  // the stale copy
+        if (f == kKick) s.addBall(fourFramesOn(rest), 1.0f);
+      },
+      [](const Detections& out, FieldMm ball, int f) {
+        ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+      });
 }
 
 }  // namespace

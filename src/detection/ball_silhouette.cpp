@@ -16,7 +16,7 @@ constexpr double kCentroidRadii = 1.6;
 constexpr double kReachRadii = 0.5;
 // Lattice spacing in ball radii: about 200 samples, whatever the ball's
 // size in the image (the color test is most of the cost).
-constexpr double kStepRadii = 0.25, kMinStep = 0.25;
+constexpr double kStepRadii = 0.25;
 // A whole ball's silhouette covers its disc, blurred by a pixel or so.
 constexpr double kMinAreaShare = 0.6, kMaxAreaShare = 1.5;
 constexpr int kPasses = 4;
@@ -26,15 +26,11 @@ constexpr int kPasses = 4;
 constexpr double kRimRadii = 1.25, kMaxBeyondRim = 0.1;
 constexpr int kMaxSide = 2 * static_cast<int>((kCentroidRadii + kReachRadii) / kStepRadii) + 3;
 
-}  // namespace
-
-namespace {
-
 // The centroid of the ball-colored samples near `origin`, whose lattice is
 // judged once; false where the silhouette is no whole ball alone. (cu, cv):
 // the center from the origin (px).
 bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, double r, double& cu, double& cv) {
-  const double step = std::max(kMinStep, kStepRadii * r);
+  const double step = kStepRadii * r;
   const double reach = (kCentroidRadii + kReachRadii) * r;
   const int half = std::min(static_cast<int>(std::ceil(reach / step)), (kMaxSide - 1) / 2);
   // The whole lattice inside the image: a ball at the border is the border

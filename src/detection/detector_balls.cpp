@@ -309,9 +309,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // move at once, and a copied picture does not blur: the streak takes
     // the track, the round blob is dropped with the echoes.
     for (auto& c : ball_cands) {
-      if (c.track < 0 || isStreak(c) || dist(c.pos, ball_tracks[c.track].pos[1]) > 2 * opt.ball_radius) continue;
+      if (c.track < 0 || isStreak(c)) continue;
+      const FieldMm lay = ball_tracks[c.track].pos[1];
+      if (dist(c.pos, lay) > 2 * opt.ball_radius) continue;
       for (const auto& s : ball_cands)
-        if (s.track == c.track && isStreak(s) && dist(s.pos, ball_tracks[c.track].pos[1]) > 4 * opt.ball_radius) {
+        if (s.track == c.track && isStreak(s) && dist(s.pos, lay) > 4 * opt.ball_radius) {
           c.track = -1, c.stale = true;
           break;
         }
@@ -320,10 +322,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // nothing else explains both the blur and the place. Such streaks
     // continue their tracks first, then every candidate by confidence.
     const auto onCourseStreak = [&](const BallCandidate& c) { return c.track >= 0 && !c.kicked && isStreak(c); };
-    for (const bool first : {true, false})
-    for (auto& c : ball_cands) {
-      if (onCourseStreak(c) != first) continue;
-      if (c.track >= 0 && !ball_tracks[c.track].confirmed) {
+    for (const bool first : {true, false}) {
+      for (auto& c : ball_cands) {
+        if (onCourseStreak(c) != first) continue;
+        if (c.track < 0 || ball_tracks[c.track].confirmed) {
+          c.track = -1;
+          continue;
+        }
         BallTrack& bt = ball_tracks[c.track];
         bt.pos[0] = bt.pos[1];
         bt.t[0] = bt.t[1];
@@ -334,8 +339,6 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         bt.confirmed = true;
         bt.rank = c.rank;
         bt.streak = isStreak(c);
-      } else {
-        c.track = -1;
       }
     }
     // What continues no track but lies on the course of a ball tracked in

@@ -141,7 +141,7 @@ struct BallCandidate {
   double confidence = 0;
   double rank = 0;  // orders equal confidences: the stronger evidence first
   int track = -1;
-  bool kicked = false; // continues its track only as kicked (outside its course's gate)
+  bool kicked = false;  // continues its track only as kicked (outside its course's gate)
   bool stale = false;  // where a kicked ball lay (Impl::findBalls)
 };
 
