@@ -66,10 +66,17 @@ constexpr double kWindowSideMm = 320;
 constexpr double kCoarseThresholdFactor = 0.75;
 constexpr double kCoarseWeakThresholdFactor = 0.5;
 // The full grid's fast-ball pass runs on its streak lattice within this
-// many lattice cells (22 mm each at 5.6 mm) of each coarse candidate: the
-// two lattices are offset, and a candidate's centroid may be pulled toward
-// a colored neighbour (a ball against a robot).
-constexpr int kStreakSearchReach = 1;
+// many lattice cells (22 mm each at 5.6 mm) of each coarse candidate. The
+// candidate stands at its streak's centroid, but the full lattice peaks
+// anywhere on the streak's score plateau, which spans the streak's length
+// less the footprint's inner run: up to about +-40 mm for the longest
+// streaks the footprint takes (a ball at 8 m/s, 107 mm; a far ball seen
+// from the touch line, stretched along the view to 4 diameters). The two
+// lattices are offset too, and a candidate's centroid may be pulled toward
+// a colored neighbour (a ball against a robot). At one cell, the side
+// view's ball 5.5 m away was lost: its coarse candidate lay 21 and 30 mm
+// from the full lattice's two peaks, on cells two apart.
+constexpr int kStreakSearchReach = 2;
 constexpr int kStreakPeaksPerSearch = (2 * kStreakSearchReach + 1) * (2 * kStreakSearchReach + 1);
 // A coarse candidate this close to a full-grid blob is that blob (its
 // full-grid peaks would lie within kStreakBlobDistanceMm of it).
