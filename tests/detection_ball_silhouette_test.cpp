@@ -73,7 +73,12 @@ Errors ballErrors(SceneSpec spec, const std::vector<FieldMm>& where, bool agree 
     };
     const auto a = nearest(proc);
     const double err = a ? std::hypot(a->x - p.x, a->y - p.y) : -1;
-    std::printf("  ball at (%6.0f, %6.0f): error %.2f mm\n", p.x, p.y, err);
+    // Signed along the view (+: away from the camera) and across it.
+    const double vx = p.x - cam.x(), vy = p.y - cam.y(), vl = std::hypot(vx, vy);
+    const double along = a ? ((a->x - p.x) * vx + (a->y - p.y) * vy) / vl : 0;
+    const double across = a ? ((a->y - p.y) * vx - (a->x - p.x) * vy) / vl : 0;
+    std::printf("  ball at (%6.0f, %6.0f), %4.1f m away: error %.2f mm (%+.2f along the view, %+.2f across)\n", p.x,
+                p.y, vl / 1000, err, along, across);
     if (a)
       e.mm.push_back(err);
     else
