@@ -73,6 +73,25 @@ const std::vector<Condition>& conditions() {
          box({-3800, 3040, 0}, {-3520, 3140, 90}, {235, 110, 35});  // orange shoe
          box({-4760, 1500, 0}, {-4660, 1780, 90}, {120, 75, 45});   // brown shoe
        }},
+      // --- several at once, as a venue brings them: a cast with the
+      // camera's color processing, and dim, noisy, blurred or unevenly lit
+      // frames, or pale markers
+      {"cold_desaturated_dark_noisy", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 0.5);
+         s.lighting.exposure = 0.5;
+         s.noise_sigma = 3.0;
+         s.shot_noise = 0.12;
+       }},
+      {"magenta_cast_overexposed", [](SceneSpec& s, int) {
+         cast(s, {1.2, 0.8, 1.2});
+         s.lighting.exposure = 1.5;
+       }},
+      {"cold_saturation_0.3", [](SceneSpec& s, int) { cast(s, kColdLed, 0.3); }},
+      {"tungsten_desaturated_navy_and_amber", [](SceneSpec& s, int) {
+         cast(s, kTungsten, 0.6);
+         s.materials.blue = {20, 30, 125};
+         s.materials.yellow = {250, 165, 0};
+       }},
       // --- ball shades
       {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
       {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},
@@ -88,6 +107,47 @@ TEST_P(SceneColorSweep, BothTeamsEveryIdAndTheBallUnderAnyColors) { sweepConditi
 INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0, conditions().size()),
                          [](const ::testing::TestParamInfo<size_t>& info) {
                            return conditionTestName(conditions()[info.param].name);
+                         });
+
+// Combinations the defaults do not yet hold (open work; run them with
+// --gtest_also_run_disabled_tests and DV_SCENE_FULL=1). Measured with the
+// full run: the tungsten one loses the ball in half the frames (ball
+// recall 0.500 at both sizes, precision 0.333 at 2448 x 2048); the green
+// one loses robots (recall 0.977 / 0.989); the magenta one, whose pale
+// pink becomes (255, 224, 255) beside white lines at (255, 255, 255),
+// loses most robots and confuses the teams (recall 0.398 / 0.307, team
+// 0.686 / 0.519).
+const std::vector<Condition>& openConditions() {
+  static const std::vector<Condition> list = {
+      {"tungsten_desaturated_vignetting_blur", [](SceneSpec& s, int) {
+         cast(s, kTungsten, 0.5, 1.3);
+         s.lighting.vignetting = 0.6;
+         s.lens_blur_px = 1.2;
+       }},
+      {"green_cast_desaturated_uneven_light", [](SceneSpec& s, int) {
+         cast(s, {0.8, 1.3, 0.8}, 0.6);
+         s.lighting.uneven_ratio = 4.0;
+         s.lighting.uneven_direction = 0.7;
+       }},
+      {"magenta_cast_overexposed_pale_markers", [](SceneSpec& s, int) {
+         cast(s, {1.2, 0.8, 1.2});
+         s.lighting.exposure = 1.6;
+         s.materials.pink = {250, 175, 205};
+         s.materials.yellow = {245, 245, 80};
+       }},
+  };
+  return list;
+}
+
+class SceneColorSweepOpen : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(SceneColorSweepOpen, DISABLED_BothTeamsEveryIdAndTheBallUnderAnyColors) {
+  sweepCondition(openConditions()[GetParam()]);
+}
+
+INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweepOpen, ::testing::Range<size_t>(0, openConditions().size()),
+                         [](const ::testing::TestParamInfo<size_t>& info) {
+                           return conditionTestName(openConditions()[info.param].name);
                          });
 
 }  // namespace

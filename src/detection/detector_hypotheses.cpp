@@ -25,7 +25,7 @@ void Detector::Impl::findHypotheses() {
       dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
       ++k;
     }
-    if (k < (weak_on ? 1 : 2)) continue;
+    if (k < (weak_on ? 0 : 2)) continue;
     if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
       for (int a = 0; a < kMaxNeighbors; ++a) {
         int best = a;
@@ -121,8 +121,10 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
   if (weak_index.within(cp, opt.side_search_radius).empty()) return;
   const FitTolerance tol = fitToleranceAt(cp);
   // The pattern of n blobs (slots given) at `pose`, with weak peaks in its
-  // missing slots; at least `min_n` blobs in all.
-  auto tryPattern = [&](const int* blob, const int* slot, int n, const PatternPose& pose, int min_n) {
+  // missing slots; at least `min_n` blobs in all, or (`marker_ok`) one
+  // fewer where the slot left shows a marker in the frame.
+  auto tryPattern = [&](const int* blob, const int* slot, int n, const PatternPose& pose, int min_n,
+                        bool marker_ok = false) {
     unsigned filled = 0;
     for (int i = 0; i < n; ++i) filled |= 1u << slot[i];
     int found[kPatternSlots];
@@ -130,7 +132,10 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
     FitTolerance weak_tol = tol;
     weak_tol.mm = opt.weak_side_tolerance;
     const int n_weak = findWeakSlots(pose, filled, weak_index, weak_tol, found, error);
-    if (n_weak == 0 || n + n_weak < min_n) return;
+    if (n_weak == 0 || n + n_weak < min_n - marker_ok) return;
+    if (n + n_weak < min_n)
+      for (int s = 1; s < kPatternSlots; ++s)
+        if (!(filled >> s & 1u) && found[s] < 0 && !slotShowsMarker(pose, s, c)) return;
     Hypothesis h;
     h.n = 0;
     FieldMm pts[kPatternSlots];
@@ -142,7 +147,9 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
     }
     h.pose = fitPattern(pts, h.slot, h.n, tol);
     if (h.pose.score < opt.min_weak_fit) return;
-    h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kFourBlobPenalty) * (1 - kWeakSideRankStep * n_weak);
+    int all_weak = n_weak;
+    for (int i = 0; i < n; ++i) all_weak += blobs[blob[i]].weak;
+    h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kFourBlobPenalty) * (1 - kWeakSideRankStep * all_weak);
     if (h.rank > best.rank) best = h;
   };
   auto onRing = [&](const FieldMm& p) {
@@ -152,7 +159,9 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
     tryPattern(best.blob, best.slot, best.n, best.pose, kPatternSlots);
   if (best.rank > 0 && best.n == kPatternSlots) return;
   // Two side blobs: on the ring, as far apart in angle as two slots.
+  bool side_pair = false;
   forSideBlobPairs(c, nbr, k, [&](const int* blob, const int* slot, const PatternPose& pose) {
+    side_pair = true;
     tryPattern(blob, slot, 3, pose, kPatternSlots - 1);
   });
   if (best.rank > 0) return;
@@ -166,6 +175,33 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
       tryPattern(blob, slot, 2, fitPattern(pts, slot, 2, tol), kPatternSlots);
     }
   }
+  if (best.rank > 0 || side_pair) return;
+  // Weak peaks for side blobs too, where no two side blobs fit the pattern
+  // (those set the pose, and weak peaks off its slots are no markers): a
+  // center whose markers peaked below the threshold, all or all but one (a
+  // desaturated, cast frame at low resolution: chroma contrast falls for
+  // the small side dots first). Any two of its side peaks, strong or weak,
+  // on the ring give the pose, and weak peaks must then fill the other
+  // slots, all but one that shows a marker in the frame. (Three side
+  // peaks alone let noise make robots: precision 0.96 on the dark, noisy
+  // preset at 1224 x 1024, and yellow robots where only blue ones stood.)
+  std::array<int, 64> sides;
+  const int m = sidePeaks(c, nbr, k, sides);
+  if (m < kPatternSlots - 2) return;
+  forSideBlobPairs(c, sides.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
+    tryPattern(blob, slot, 3, pose, kPatternSlots, /*marker_ok=*/true);
+  });
+}
+
+int Detector::Impl::sidePeaks(int c, const int* nbr, int k, std::array<int, 64>& out) {
+  int m = 0;
+  for (int i = 0; i < k && m < static_cast<int>(out.size()); ++i) out[m++] = nbr[i];
+  for (const auto& hit : weak_index.within(blobs[c].at_ref, opt.side_search_radius)) {
+    if (m == static_cast<int>(out.size())) break;
+    const int w = n_strong + static_cast<int>(hit.first);
+    if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c)) out[m++] = w;
+  }
+  return m;
 }
 
 bool Detector::Impl::slotOutOfView(const PatternPose& pose, int slot) const {
@@ -245,16 +281,8 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
   forSideBlobPairs(c, nbr, k, take);
   if (best.rank > 0 || weak_index.points().empty()) return;
   std::array<int, 64> mixed;
-  int m = 0;
-  for (int i = 0; i < k; ++i) mixed[m++] = nbr[i];
-  const int n_blobs = m;
-  for (const auto& hit : weak_index.within(blobs[c].at_ref, opt.side_search_radius)) {
-    if (m == static_cast<int>(mixed.size())) break;
-    const int w = n_strong + static_cast<int>(hit.first);
-    if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c))
-      mixed[m++] = w;
-  }
-  if (m == n_blobs) return;
+  const int m = sidePeaks(c, nbr, k, mixed);
+  if (m == k) return;
   forSideBlobPairs(c, mixed.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
     if (blobs[blob[1]].weak != blobs[blob[2]].weak) take(blob, slot, pose);
   });

@@ -255,10 +255,17 @@ struct Detector::Impl {
   // Weak peaks for the side blobs a center's pattern lacks (weak_sides.h):
   // the missing slot of its best three-side pattern; else the missing slots
   // of two side blobs that fit the pattern tightly with the center (three
-  // or four sides in all); else, from one side blob, all three others. Ranks
-  // are a little below those of patterns of blobs alone; `best` is replaced
-  // when one ranks higher.
+  // or four sides in all); else, from one side blob, all three others;
+  // else, where no two side blobs fit, from any two side peaks, weak or
+  // not, weak peaks in the other slots, all but one that shows a marker in
+  // the frame (slotShowsMarker). Ranks are a little below
+  // those of patterns of blobs alone, a step lower per weak peak; `best` is
+  // replaced when one ranks higher.
   void completeWithWeak(int c, const int* nbr, int k, Hypothesis& best);
+  // The peaks that may be center c's side blobs: its neighbours nbr[0, k)
+  // (blobs), then the weak peaks within reach that are not too near it nor
+  // as dark as a robot top. Returns how many `out` holds.
+  int sidePeaks(int c, const int* nbr, int k, std::array<int, 64>& out);
 
   // Whether the blob of `slot` at `pose` (on the search plane) cannot be
   // seen whole: part of its disc lies outside the image.
