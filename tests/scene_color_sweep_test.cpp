@@ -110,13 +110,20 @@ INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0
                          });
 
 // Combinations the defaults do not yet hold (open work; run them with
-// --gtest_also_run_disabled_tests and DV_SCENE_FULL=1). Measured with the
-// full run: the tungsten one loses the ball in half the frames (ball
-// recall 0.500 at both sizes, precision 0.333 at 2448 x 2048); the green
-// one loses robots (recall 0.977 / 0.989); the magenta one, whose pale
-// pink becomes (255, 224, 255) beside white lines at (255, 255, 255),
-// loses most robots and confuses the teams (recall 0.398 / 0.307, team
-// 0.686 / 0.519).
+// --gtest_also_run_disabled_tests, DV_SCENE_FULL=1 and DV_MISSES=1).
+// Measured with the full run:
+//  - tungsten: the ball is lost in half the frames (ball recall 0.500 at
+//    both sizes, precision 0.333 at 2448 x 2048): balls are reported on
+//    the line crossings of the center circle at the image's vignetted edge,
+//    (0, 0), (490, 0) and (0, 500), and outrank the ball. Tungsten with
+//    saturation 0.5 and gamma 1.3 alone reports one such ball (precision
+//    0.800 at 1224 x 1024); blur and vignetting without the desaturation
+//    and gamma hold every bar;
+//  - green: robots are lost (recall 0.977 / 0.989); the cast with the
+//    desaturation alone, and the uneven light alone, hold every bar;
+//  - magenta: its pale pink becomes (255, 224, 255) beside white lines at
+//    (255, 255, 255); most robots are lost and the teams confused (recall
+//    0.398 / 0.307, team 0.686 / 0.519).
 const std::vector<Condition>& openConditions() {
   static const std::vector<Condition> list = {
       {"tungsten_desaturated_vignetting_blur", [](SceneSpec& s, int) {

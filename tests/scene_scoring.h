@@ -173,15 +173,26 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
       ++s.truth_balls;
       const bool complete = blobNear(b.x(), b.y(), b.z(), 15, true);
       s.detectable_balls += complete;
+      bool matched = false;
       for (const auto& d : out.balls) {
         const double e = std::hypot(d.position.x - b.x(), d.position.y - b.y());
         if (e < 50) {
           ++s.balls_matched;
           s.detectable_balls_matched += complete;
           s.ball_err.push_back(e);
+          matched = true;
           break;
         }
       }
+      if (!matched && std::getenv("DV_MISSES"))
+        std::printf("missed: ball at (%.0f, %.0f), a blob there %s\n", b.x(), b.y(), complete ? "yes" : "no");
+    }
+    // Balls reported where no ball is (DV_MISSES).
+    for (const auto& d : out.balls) {
+      bool real = false;
+      for (const auto& b : frame.truth.balls()) real |= std::hypot(d.position.x - b.x(), d.position.y - b.y()) < 50;
+      if (!real && std::getenv("DV_MISSES"))
+        std::printf("false ball at (%.0f, %.0f), confidence %.2f\n", d.position.x, d.position.y, d.confidence);
     }
   }
 }
