@@ -25,7 +25,7 @@ void Detector::Impl::findHypotheses() {
       dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
       ++k;
     }
-    if (k < (weak_on ? 0 : 2)) continue;
+    if (!weak_on && k < 2) continue;
     if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
       for (int a = 0; a < kMaxNeighbors; ++a) {
         int best = a;
@@ -279,7 +279,8 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
     best = h;
   };
   forSideBlobPairs(c, nbr, k, take);
-  if (best.rank > 0 || weak_index.points().empty()) return;
+  // A weak peak stands only beside a side blob here: none, nothing to pair.
+  if (best.rank > 0 || k == 0 || weak_index.points().empty()) return;
   std::array<int, 64> mixed;
   const int m = sidePeaks(c, nbr, k, mixed);
   if (m == k) return;

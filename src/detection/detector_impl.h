@@ -258,9 +258,9 @@ struct Detector::Impl {
   // or four sides in all); else, from one side blob, all three others;
   // else, where no two side blobs fit, from any two side peaks, weak or
   // not, weak peaks in the other slots, all but one that shows a marker in
-  // the frame (slotShowsMarker). Ranks are a little below
-  // those of patterns of blobs alone, a step lower per weak peak; `best` is
-  // replaced when one ranks higher.
+  // the frame (slotShowsMarker). Ranks are a little below those of
+  // patterns of blobs alone, a step lower per weak peak; `best` is replaced
+  // when one ranks higher.
   void completeWithWeak(int c, const int* nbr, int k, Hypothesis& best);
   // The peaks that may be center c's side blobs: its neighbours nbr[0, k)
   // (blobs), then the weak peaks within reach that are not too near it nor
