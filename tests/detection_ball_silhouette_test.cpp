@@ -2,7 +2,9 @@
 // the touch line the blob stage puts a far ball where its score peaks on
 // the sampling grid, a cell of tens of millimetres of field there (median
 // error 10.8 mm on the placements below, 90 % within 24.7 mm, before the
-// silhouette; 1.7 and 4.8 mm with it); top-down the peak leans to the lit
+// silhouette; 1.7 and 4.8 mm with its yes/no centroid, which leans away
+// from the shaded underside; 1.1 and 2.8 mm, 95 % within 3.2 mm, with each
+// sample weighed by its share of ball); top-down the peak leans to the lit
 // side. Rendered
 // frames, each alone, robots at their true height.
 #include <gtest/gtest.h>
@@ -86,7 +88,9 @@ Errors ballErrors(SceneSpec spec, const std::vector<FieldMm>& where, bool agree 
     if (agree) {
       const auto b = nearest(by_full);
       EXPECT_EQ(a.has_value(), b.has_value()) << "coarse and full search disagree on the ball at " << p.x << ", " << p.y;
-      if (a && b) EXPECT_LT(std::hypot(a->x - b->x, a->y - b->y), 1.0) << "coarse vs full at " << p.x << ", " << p.y;
+      if (a && b) {
+        EXPECT_LT(std::hypot(a->x - b->x, a->y - b->y), 1.0) << "coarse vs full at " << p.x << ", " << p.y;
+      }
     }
   }
   return e;
@@ -105,16 +109,17 @@ TEST(BallSilhouette, SideViewFarBallsWithinAFewMillimetres) {
   for (double y = -2000; y <= 3000; y += 500)
     for (double x : {-2000.0, -900.0, 300.0}) where.push_back({x + 0.1 * y, y});
   const Errors e = ballErrors(preset("side_view"), where, /*agree=*/true);
-  std::printf("side view: %zu of %zu balls, median %.2f mm, 90 %% %.2f mm\n", e.mm.size(), where.size(),
-              e.quantile(0.5), e.quantile(0.9));
+  std::printf("side view: %zu of %zu balls, median %.2f mm, 90 %% %.2f mm, 95 %% %.2f mm\n", e.mm.size(),
+              where.size(), e.quantile(0.5), e.quantile(0.9), e.quantile(0.95));
   EXPECT_EQ(e.missed, 0);
   EXPECT_LE(e.quantile(0.5), 3.0);
-  EXPECT_LE(e.quantile(0.9), 8.0);
+  EXPECT_LE(e.quantile(0.95), 4.0);
 }
 
 // Top-down under 3:1 light with a sun patch: the lit side is not the center
 // (the blob's peak: median 0.85 mm, 90 % 1.44 mm on these placements; the
-// silhouette 0.71 and 1.17 mm).
+// silhouette's yes/no centroid 0.71 and 1.17 mm; weighed by share of ball,
+// 0.42 and 0.63 mm).
 TEST(BallSilhouette, TopDownUnevenLightWithinTheBar) {
   std::vector<FieldMm> where;
   for (double x = -3800; x <= -800; x += 600)
@@ -123,8 +128,8 @@ TEST(BallSilhouette, TopDownUnevenLightWithinTheBar) {
   std::printf("top-down, uneven light: %zu of %zu balls, median %.2f mm, 90 %% %.2f mm\n", e.mm.size(), where.size(),
               e.quantile(0.5), e.quantile(0.9));
   EXPECT_EQ(e.missed, 0);
-  EXPECT_LE(e.quantile(0.5), 0.75);
-  EXPECT_LE(e.quantile(0.9), 1.3);
+  EXPECT_LE(e.quantile(0.5), 0.6);
+  EXPECT_LE(e.quantile(0.9), 0.9);
 }
 
 }  // namespace

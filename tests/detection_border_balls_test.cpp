@@ -17,6 +17,7 @@ namespace {
 
 struct RedTest final : BallColorTest {
   bool isBall(const float rgb[3]) const override { return rgb[0] > 128; }
+  bool isCarpet(const float rgb[3]) const override { return rgb[1] > rgb[0] && rgb[1] > rgb[2]; }
 };
 
 constexpr double kBall = 21.5;

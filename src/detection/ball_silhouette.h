@@ -8,7 +8,9 @@
 // so the center is the centroid of the ball-colored samples on a lattice of
 // a quarter of the ball's image radius (a fraction of a pixel far away),
 // judged once around the blob, the centroid's window recentred until it
-// settles. The judge of "ball-colored" is the detector's own (the border
+// settles; then each sample weighed by its share of ball (where its
+// chromaticity lies between the ball's and the carpet's), so that the blur
+// of a shaded rim counts as that of a lit one. The judge of "ball-colored" is the detector's own (the border
 // balls' test), so nothing is tuned to a scene's colors. A silhouette that
 // is too small for a whole ball in view (cut, occluded by a robot) or too
 // large for one (something orange beside it) leaves the blob's place.

@@ -40,11 +40,14 @@ inline constexpr double kMinBorderOverlap = 0.6;
 // with room for the fit's error.
 inline constexpr double kMinBorderVisible = 0.4;
 
-// Whether a color (0..255 RGB) is the ball's, as the detector judges a blob.
+// Whether a color (0..255 RGB) is the ball's, as the detector judges a blob;
+// and whether it is the carpet's (the field class's), which the ball is
+// seen against.
 class BallColorTest {
  public:
   virtual ~BallColorTest() = default;
   virtual bool isBall(const float rgb[3]) const = 0;
+  virtual bool isCarpet(const float rgb[3]) const = 0;
 };
 
 struct BorderBall {

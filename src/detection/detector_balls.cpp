@@ -96,17 +96,24 @@ class Detector::Impl::BallColorJudge final : public BallColorTest {
   bool isBall(const float rgb[3]) const override {
     const ClippedColor seen(rgb);
     if (seen.saturated()) return false;
-    const float d_field = seen.distance(d_.frame_color[kField]);
-    const float reach = std::max(kClassSpreads * d_.frame_spread[kField], kMinClassRadius);
-    if (d_field <= reach) {
+    if (withinFieldReach(seen)) {
       float d_or = seen.distance(orange_);
       if (d_.color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange_));
-      if (d_field <= d_or) return false;
+      if (seen.distance(d_.frame_color[kField]) <= d_or) return false;
     }
     return confidence(rgb, false) > 0;
   }
+  bool isCarpet(const float rgb[3]) const override {
+    const ClippedColor seen(rgb);
+    return !seen.saturated() && withinFieldReach(seen);
+  }
 
  private:
+  bool withinFieldReach(const ClippedColor& seen) const {
+    const float reach = std::max(kClassSpreads * d_.frame_spread[kField], kMinClassRadius);
+    return seen.distance(d_.frame_color[kField]) <= reach;
+  }
+
   const Impl& d_;
   ColorVec orange_, mapped_orange_;
   float min_brightness_;
