@@ -36,6 +36,22 @@ TEST(ClippedColor, TwoClippedChannelsSayTooLittle) {
   EXPECT_GT(p.distance(feature(255, 120, 20)), 40.f);
 }
 
+// A yellow top in the bright corner of a green-cast, desaturated frame: red
+// and green clip, blue does not. As seen it is nearer the lines' white than
+// the frame's yellow (and its robot was dropped as a line); red and green
+// grown together it is the yellow. A clipped white stays white.
+TEST(ClippedColor, TwoClippedChannelsGrowTogether) {
+  const ColorVec yellow = feature(200, 215, 60), white = feature(230, 255, 225);
+  const float center[3] = {255, 255, 195};
+  const ClippedColor c(center);
+  ASSERT_TRUE(c.saturated());
+  const ColorVec seen = feature(center[0], center[1], center[2]);
+  EXPECT_LT(colorDistance(seen, white), colorDistance(seen, yellow));
+  EXPECT_LT(c.distance(yellow), c.distance(white));
+  const float line[3] = {255, 255, 255};
+  EXPECT_FLOAT_EQ(ClippedColor(line).distance(yellow), colorDistance(feature(255, 255, 255), yellow));
+}
+
 TEST(ClippedColor, UnclippedIsThePlainDistanceAndWhiteSaysNothing) {
   const float dim[3] = {120, 60, 10};
   const ClippedColor d(dim);

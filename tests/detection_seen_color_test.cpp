@@ -140,6 +140,24 @@ TEST(DetectionSeenColor, TwoMissingSideBlobsReadFromTheFrame) {
   EXPECT_EQ(f.right[1], 0);
 }
 
+// Three side blobs of every robot taken out (pale dots beside the black
+// top that lost their chroma to a cast, desaturation or clipping, where one
+// green dot still peaks): the center and the side blob left fix the pose
+// for the one slot the side blob may fill with markers shown at the other
+// three, so the robots are found with their ids; from blobs alone none is.
+TEST(DetectionSeenColor, ThreeMissingSideBlobsReadFromTheFrame) {
+  const RobotsFound f = robotsFoundAfter([](BlobList& blobs, const FieldMm* slot, int n) {
+    for (int k = 1; k <= 4; ++k) {
+      if (k == 1 + n % 4) continue;
+      removeNear(blobs.blobs, slot[k]);
+      removeNear(blobs.weak, slot[k]);
+    }
+  });
+  EXPECT_EQ(f.right[0], 8);
+  EXPECT_EQ(f.wrong[0], 0);
+  EXPECT_EQ(f.right[1], 0);
+}
+
 // A peak on the ring much darker than the center blob (JPEG's chroma
 // ringing on the black robot top) is no side blob: with one side blob of
 // every robot turned that dark, the slot is read from the frame and every

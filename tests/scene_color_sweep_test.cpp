@@ -92,6 +92,15 @@ const std::vector<Condition>& conditions() {
          s.materials.blue = {20, 30, 125};
          s.materials.yellow = {250, 165, 0};
        }},
+      // Two robots in the bright corner at 1224 x 1024 show no side peak at
+      // all (pale pink dots beside the black top; recall 0.977 there, 1.000
+      // at 2448 x 2048, where one green dot peaks and the frame shows the
+      // other three).
+      {"green_cast_desaturated_uneven_light", [](SceneSpec& s, int) {
+         cast(s, {0.8, 1.3, 0.8}, 0.6);
+         s.lighting.uneven_ratio = 4.0;
+         s.lighting.uneven_direction = 0.7;
+       }},
       // --- ball shades
       {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
       {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},
@@ -127,8 +136,6 @@ INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0
 //    test (the blob's color on the lines' white mixed with the carpet)
 //    removed the false balls at 1224 x 1024 but, on raw colors under this
 //    cast, also the ball: the orange class would have to be learned.
-//  - green: robots are lost (recall 0.977 / 0.989); the cast with the
-//    desaturation alone, and the uneven light alone, hold every bar;
 //  - magenta: its pale pink becomes (255, 224, 255) beside white lines at
 //    (255, 255, 255); most robots are lost and the teams confused (recall
 //    0.398 / 0.307, team 0.686 / 0.519).
@@ -138,11 +145,6 @@ const std::vector<Condition>& openConditions() {
          cast(s, kTungsten, 0.5, 1.3);
          s.lighting.vignetting = 0.6;
          s.lens_blur_px = 1.2;
-       }},
-      {"green_cast_desaturated_uneven_light", [](SceneSpec& s, int) {
-         cast(s, {0.8, 1.3, 0.8}, 0.6);
-         s.lighting.uneven_ratio = 4.0;
-         s.lighting.uneven_direction = 0.7;
        }},
       {"magenta_cast_overexposed_pale_markers", [](SceneSpec& s, int) {
          cast(s, {1.2, 0.8, 1.2});

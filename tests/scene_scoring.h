@@ -1,4 +1,6 @@
 #pragma once
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 // Scoring rendered scenes end to end (renderer -> CPU pixel pipeline ->
 // detector) against the renderer's truth, shared by the scene tests.
 #include <gtest/gtest.h>
@@ -91,6 +93,43 @@ inline BayerPattern pipelineBayer(const SceneSpec& spec) {
   return BayerPattern::RGGB;
 }
 
+// What a sweep saw of a robot it lost (DV_MISSES): the blobs and weak
+// peaks within 150 mm of it and where its five blobs should lie on the
+// blob plane; with DV_DUMP=DIR also a crop of the frame around it, DIR/
+// miss_<width>_<id>_<x>_<y>.png.
+template <class Truth>
+void printMiss(const Truth& t, const cv::Mat& image, const CameraModel& cam, const BlobList& blobs) {
+  const Eigen::Vector3d cpos = cam.position();
+  const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - t.height());
+  auto onPlane = [&](double x, double y) { return FieldMm{cpos.x() + k * (x - cpos.x()), cpos.y() + k * (y - cpos.y())}; };
+  const FieldMm c = onPlane(t.x(), t.y());
+  std::printf("  center expected at (%.0f, %.0f), sides at", c.x, c.y);
+  const double cs = std::cos(t.orientation()), sn = std::sin(t.orientation());
+  for (const auto& o : RobotPatternGeometry::kSideBlobs) {
+    const FieldMm p = onPlane(t.x() + cs * o.x - sn * o.y, t.y() + sn * o.x + cs * o.y);
+    std::printf(" (%.0f, %.0f)", p.x, p.y);
+  }
+  std::printf("\n");
+  for (int w = 0; w < 2; ++w)
+    for (const auto& b : w ? blobs.weak : blobs.blobs)
+      if (std::hypot(b.position.x - c.x, b.position.y - c.y) < 150)
+        std::printf("  %s at (%.0f, %.0f), score %.2f, rgb %.0f %.0f %.0f\n", w ? "weak peak" : "blob", b.position.x,
+                    b.position.y, b.score, b.rgb[0], b.rgb[1], b.rgb[2]);
+  const char* dir = std::getenv("DV_DUMP");
+  const auto px = cam.fieldToImage({t.x(), t.y(), t.height()});
+  if (!dir || !px) return;
+  cv::Mat bgr = image;
+  if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_BayerBG2BGR);  // the renderer's RGGB
+  const int r = 60 * bgr.cols / 1224;
+  const cv::Rect box = cv::Rect(static_cast<int>(px->u) - r, static_cast<int>(px->v) - r, 2 * r, 2 * r) &
+                       cv::Rect(0, 0, bgr.cols, bgr.rows);
+  cv::Mat crop;
+  cv::resize(bgr(box), crop, {}, 4, 4, cv::INTER_NEAREST);
+  const std::string name = std::string(dir) + "/miss_" + std::to_string(bgr.cols) + "_" + std::to_string(t.robot_id()) +
+                           "_" + std::to_string(static_cast<int>(t.x())) + "_" + std::to_string(static_cast<int>(t.y())) + ".png";
+  cv::imwrite(name, crop);
+}
+
 // Runs `frames` frames of `spec` (camera 0). `alone`: every frame is
 // detected without history (reset before each). `detect_with`: the
 // calibration the processor uses, when not the one rendered (a fit of it).
@@ -151,6 +190,7 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
           if (std::getenv("DV_MISSES"))  // which robots a sweep lost, and how many side blobs it had
             std::printf("missed: %s %u at (%.0f, %.0f), side blobs seen %d\n",
                         team == Team::Yellow ? "yellow" : "blue", t.robot_id(), t.x(), t.y(), sides);
+          if (std::getenv("DV_MISSES")) printMiss(t, frame.image, cam, blobs);
           continue;
         }
         used[best] = true;

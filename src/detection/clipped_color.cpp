@@ -20,10 +20,11 @@ ClippedColor::ClippedColor(const float rgb[3]) {
 float ClippedColor::distance(const ColorVec& target) const {
   float v[3] = {rgb_[0], rgb_[1], rgb_[2]};
   float best = colorDistance(colorFeature(v[0], v[1], v[2]), target);
-  if (n_clipped_ != 1) return best;
+  if (n_clipped_ == 0 || n_clipped_ == 3) return best;
   const float step = (kMaxClipGain - 1.f) / (kSteps - 1);
   for (int i = 1; i < kSteps; ++i) {
-    v[clipped_] = rgb_[clipped_] * (1.f + step * i);
+    for (int c = 0; c < 3; ++c)
+      if (rgb_[c] >= kClipLevel) v[c] = rgb_[c] * (1.f + step * i);
     best = std::min(best, colorDistance(colorFeature(v[0], v[1], v[2]), target));
   }
   return best;

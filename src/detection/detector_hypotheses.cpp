@@ -280,13 +280,46 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
   };
   forSideBlobPairs(c, nbr, k, take);
   // A weak peak stands only beside a side blob here: none, nothing to pair.
-  if (best.rank > 0 || k == 0 || weak_index.points().empty()) return;
-  std::array<int, 64> mixed;
-  const int m = sidePeaks(c, nbr, k, mixed);
-  if (m == k) return;
-  forSideBlobPairs(c, mixed.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
-    if (blobs[blob[1]].weak != blobs[blob[2]].weak) take(blob, slot, pose);
-  });
+  if (best.rank > 0 || k == 0) return;
+  if (!weak_index.points().empty()) {
+    std::array<int, 64> mixed;
+    const int m = sidePeaks(c, nbr, k, mixed);
+    if (m > k)
+      forSideBlobPairs(c, mixed.data(), m, [&](const int* blob, const int* slot, const PatternPose& pose) {
+        if (blobs[blob[1]].weak != blobs[blob[2]].weak) take(blob, slot, pose);
+      });
+  }
+  // A center clipped in two channels has no reliable color: its markers
+  // decide.
+  if (best.rank <= 0 && (center_like || ClippedColor(blobs[c].rgb).saturated()))
+    completeFromOneSide(c, nbr, k, best);
+}
+
+void Detector::Impl::completeFromOneSide(int c, const int* nbr, int k, Hypothesis& best) {
+  const FieldMm cp = blobs[c].at_ref;
+  const FitTolerance tol = fitToleranceAt(cp);
+  Hypothesis found;
+  int n_found = 0;
+  for (int a = 0; a < k; ++a) {
+    const FieldMm pa = blobs[nbr[a]].at_ref;
+    if (std::abs(dist(pa, cp) - RobotPatternGeometry::kSideBlobDistance) > kWeakPairRingTolerance) continue;
+    for (int sa = 1; sa < kPatternSlots; ++sa) {
+      const int blob[2] = {c, nbr[a]}, slot[2] = {0, sa};
+      const FieldMm pts[2] = {cp, pa};
+      const PatternPose pose = fitPattern(pts, slot, 2, tol);
+      if (pose.score < opt.min_weak_fit) continue;
+      bool shown = true;
+      for (int s = 1; s < kPatternSlots && shown; ++s)
+        if (s != sa) shown = !slotOutOfView(pose, s) && slotShowsMarker(pose, s, c);
+      if (!shown) continue;
+      ++n_found;
+      found.n = 2;
+      for (int i = 0; i < 2; ++i) found.blob[i] = blob[i], found.slot[i] = slot[i];
+      found.pose = pose;
+      found.rank = pose.score * kFourBlobPenalty * kEdgeRankFactor * kOneSideRankFactor;
+    }
+  }
+  if (n_found == 1 && found.rank > best.rank) best = found;
 }
 
 bool Detector::Impl::overlapsAccepted(const PatternPose& pose, const Hypothesis* skip) const {

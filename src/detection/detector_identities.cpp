@@ -37,10 +37,12 @@ int Detector::Impl::dropImplausibleCenters() {
   const auto res = clusterCenters();
   int kept = 0;
   for (int i = 0; i < nr; ++i) {
-    const ColorVec& c = samples[i];
-    const float d_team = colorDistance(c, res.mean[labels[i]]);
-    const float d_bg = std::min(colorDistance(c, classes[kField].color),
-                                colorDistance(c, classes[kWhite].color));
+    // A center clipped in two channels (a yellow top in a sun patch) is
+    // judged by the colors it may have been, as the field and the lines
+    // are; a white line crossing clips all three and is judged as seen.
+    const ClippedColor c(blobs[robots[i].blob[0]].rgb);
+    const float d_team = c.distance(res.mean[labels[i]]);
+    const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
     if (d_bg < d_team) {
       for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
       blobs[robots[i].blob[0]].implausible_center = true;

@@ -45,6 +45,9 @@ constexpr double kWeakPairAngleTolerance = 0.35;
 // pattern's rank; a side blob counts as outside when any point of its disc
 // is (the pixel stage takes peaks only where that disc is seen).
 constexpr double kEdgeRankFactor = 0.6;
+// A pattern of a center and one side blob, its other slots read from the
+// frame, ranks at this fraction of one of a center and two.
+constexpr double kOneSideRankFactor = 0.8;
 // Brightness (r + g + b) as a share of the center blob's: a side blob is
 // at least kTopBrightness (the markers are about as bright as the centers;
 // darker peaks lie on the robot top), a marker read from the frame where no
@@ -298,6 +301,15 @@ struct Detector::Impl {
   // taken. Ranked below every pattern with three side blobs; an id left
   // open is a guess unless teammates or a track tell it.
   void completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best);
+
+  // A center blob (team-colored) and one side blob on the ring, where the
+  // frame shows markers at all three other slots, each in full view: a
+  // robot whose other dots did not peak (pale dots beside a dark top, their
+  // chroma lost to desaturation or clipping). Each slot the side blob may
+  // fill is tried; the pose is taken only where exactly one shows markers
+  // at the others (else the orientation would be a guess). Ranked below
+  // every pattern of two side peaks.
+  void completeFromOneSide(int c, const int* nbr, int k, Hypothesis& best);
 
   // Center blob c with each pair of its neighbours nbr[0, k) that lie on the
   // side-blob ring as far apart in angle as two slots: fn(blob, slot, pose)
