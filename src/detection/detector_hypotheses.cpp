@@ -243,7 +243,10 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
   auto nearer = [&](int a, int b) {
     return std::min(colorDistance(blobs[c].color, classes[a].color), colorDistance(blobs[c].color, classes[b].color));
   };
-  const bool center_like = nearer(kYellow, kBlue) < nearer(kGreen, kPink);
+  // A center clipped in two channels has no reliable color: its markers
+  // decide.
+  const bool center_like =
+      nearer(kYellow, kBlue) < nearer(kGreen, kPink) || ClippedColor(blobs[c].rgb).saturated();
   // Whether the slots of `pose` other than slot[1], slot[2] are out of
   // view or show markers; `by_marker`: at least one shows a marker.
   auto othersShown = [&](const int* blob, const int* slot, const PatternPose& pose, int n_weak, bool& by_marker) {
@@ -289,10 +292,7 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
         if (blobs[blob[1]].weak != blobs[blob[2]].weak) take(blob, slot, pose);
       });
   }
-  // A center clipped in two channels has no reliable color: its markers
-  // decide.
-  if (best.rank <= 0 && (center_like || ClippedColor(blobs[c].rgb).saturated()))
-    completeFromOneSide(c, nbr, k, best);
+  if (best.rank <= 0 && center_like) completeFromOneSide(c, nbr, k, best);
 }
 
 void Detector::Impl::completeFromOneSide(int c, const int* nbr, int k, Hypothesis& best) {

@@ -1,4 +1,5 @@
 #include "detection/detector_impl.h"
+#include "detection/seen_color.h"
 
 namespace dv {
 
@@ -111,6 +112,7 @@ void Detector::Impl::classifyRobots() {
     learnClass(kGreen, kPink, res);
     frame_color[kGreen] = green;
     frame_color[kPink] = pink;
+    if (res.count[1] == 0) pinkFromUnseenSlots();
   }
 
   // Per robot: its own side blobs, against its own center color; then its
@@ -183,6 +185,40 @@ void Detector::Impl::classifyRobots() {
   for (int k : {kYellow, kBlue, kGreen, kPink})
     if (frame_seen[k]) ref[n] = classes[k].reference, seen[n] = frame_color[k], ++n;
   color_map.fit(ref, seen, n);
+}
+
+void Detector::Impl::pinkFromUnseenSlots() {
+  if (!opt.probe_missing_sides || !frame_view.image) return;
+  const size_t n_blobs = samples.size();
+  for (const auto& r : robots) {
+    unsigned filled = 0;
+    for (int i = 1; i < r.n; ++i) filled |= 1u << r.slot[i];
+    if (filled == 0x1Eu) continue;
+    Hypothesis at_team = r;
+    refit(at_team);
+    for (int s = 1; s < kPatternSlots; ++s) {
+      if (filled >> s & 1u) continue;
+      const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+      const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, teamHeight(r.team)}, opt.probe_radius);
+      // In view, and no darker than a marker may be (not the robot top).
+      if (seen.share < opt.min_probe_share ||
+          seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * brightness(r.blob[0]))
+        continue;
+      samples.push_back(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]));
+    }
+  }
+  if (samples.size() == n_blobs) return;
+  labels.resize(samples.size());
+  const ColorVec prior[2] = {frame_color[kGreen], classes[kPink].color};
+  const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
+  TwoMeansResult res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  orderByRatio(res, 0, 1);
+  // Two shades of green split as well: the pink must be redder than white.
+  auto redOverGreen = [](const float* c) { return c[0] / std::max(c[1], 1e-3f); };
+  if (!res.separated || res.count[1] == 0 || !neutral.valid ||
+      redOverGreen(res.mean[1].c) <= redOverGreen(neutral.rgb))
+    return;
+  frame_color[kPink] = res.mean[1];
 }
 
 void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,

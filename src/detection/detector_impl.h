@@ -372,6 +372,14 @@ struct Detector::Impl {
 
   void classifyRobots();
 
+  // Where no side blob of this frame is pink (pale dots that peak as none,
+  // clipped toward the lines' white), the pink class would be only what
+  // earlier frames or the reference say: the colors the frame shows at the
+  // robots' unfilled slots (as bright as markers) are clustered with the
+  // side blobs (in `samples`), and a cluster redder than the lines' white
+  // (orderByRatio) is this frame's pink.
+  void pinkFromUnseenSlots();
+
   // The side slots of `r` that neither a blob nor a weak peak filled: the
   // color the camera saw there (seen_color.h), when clearly nearer to the
   // robot's own `green` or `pink`, sets the slot's marker.
