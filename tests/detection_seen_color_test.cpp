@@ -59,8 +59,9 @@ struct RobotsFound {
 };
 
 template <class Edit>
-RobotsFound robotsFoundAfter(Edit&& edit) {
+RobotsFound robotsFoundAfter(Edit&& edit, void (*light)(SceneSpec&) = nullptr) {
   SceneSpec spec = presetScene("top_down_div_b_half");
+  if (light) light(spec);
   test::halveResolution(spec);
   spec.robots = placeRandomRobots(spec, 0, 4, 4, 7, 200, 30);
   Renderer renderer(spec);
@@ -156,6 +157,23 @@ TEST(DetectionSeenColor, ThreeMissingSideBlobsReadFromTheFrame) {
   EXPECT_EQ(f.right[0], 8);
   EXPECT_EQ(f.wrong[0], 0);
   EXPECT_EQ(f.right[1], 0);
+}
+
+// A magenta cast over-exposed, pale pink dots: they clip to (255, 224, 255)
+// beside lines at (255, 255, 255) and none makes a side blob, so no pink is
+// learned from the blobs; the pink the frame shows at the robots' unfilled
+// slots is (pinkFromUnseenSlots), and every robot with a green side blob
+// left to pose it is found with its id. With the reference pink, a pale
+// dot's color is clearly nearer to neither, and no id is known.
+TEST(DetectionSeenColor, PalePinkNoDotPeaksIsLearnedFromTheSlots) {
+  const RobotsFound f = robotsFoundAfter([](BlobList&, const FieldMm*, int) {},
+                                         [](SceneSpec& s) {
+                                           s.lighting.white_balance = {1.2, 0.8, 1.2};
+                                           s.lighting.exposure = 1.6;
+                                           s.materials.pink = {250, 175, 205};
+                                         });
+  EXPECT_GE(f.right[0], 6);
+  EXPECT_EQ(f.wrong[0], 0);
 }
 
 // A peak on the ring much darker than the center blob (JPEG's chroma

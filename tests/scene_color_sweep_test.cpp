@@ -137,17 +137,16 @@ INSTANTIATE_TEST_SUITE_P(Conditions, SceneColorSweep, ::testing::Range<size_t>(0
 //    removed the false balls at 1224 x 1024 but, on raw colors under this
 //    cast, also the ball: the orange class would have to be learned.
 //  - magenta: its pale pink becomes (255, 224, 255) beside white lines at
-//    (255, 255, 255); most robots are lost and the teams confused (recall
-//    0.398 / 0.307, team 0.686 / 0.519). The lost robots are found as
-//    patterns (a center and two green side blobs, the frame showing
-//    markers at the other slots) but their ids stay open: no pink dot of
-//    the frame peaks (37 side blobs, all green, so no pink is learned and
-//    the pink class keeps its saturated reference), and a pale dot's probe,
-//    (251, 215, 250), lies 50 from that pink and 70 from green: not
-//    "clearly nearer" (0.7). Lead: a probe that is clearly not the robot's
-//    own green (its seen green blobs) and brighter than the top can only
-//    be pink; or the hue order (red over green above the lines' white),
-//    which clipping bounds from below.
+//    (255, 255, 255). No pink dot of the frame peaks (37 side blobs, all
+//    green), so no pink was learned, and a pale dot's probe, (251, 215,
+//    250), lay 50 from the reference pink and 70 from green: not "clearly
+//    nearer" (0.7); robots were found as patterns but their ids stayed
+//    open (recall 0.398 / 0.307, team 0.686 / 0.519). With this frame's
+//    pink taken from the colors its unfilled slots show
+//    (pinkFromUnseenSlots): 0.932 at both sizes, id 0.976. Every robot
+//    still lost is id 9, whose four dots are all pink: no side peaks at
+//    all, only the center blob (a pattern from the center alone, its
+//    orientation read from the frame, would be needed).
 const std::vector<Condition>& openConditions() {
   static const std::vector<Condition> list = {
       {"tungsten_desaturated_vignetting_blur", [](SceneSpec& s, int) {
