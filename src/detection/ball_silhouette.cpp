@@ -39,15 +39,15 @@ constexpr float kMaxOffMix = 0.35f;
 constexpr int kMinCarpetShare = 4;
 constexpr int kMaxSide = 2 * static_cast<int>((kCentroidRadii + kReachRadii) / kStepRadii) + 3;
 
-// The ball's colour test says yes or no, and a shaded rim (the ball's
+// The ball's color test says yes or no, and a shaded rim (the ball's
 // underside, seen from the side, over its own shadow) says no where a lit
 // rim's samples of the same coverage say yes: the yes/no centroid leans
 // to the lit side, a few tenths of a pixel, which at a grazing view are
 // millimetres along it. Each sample's share of ball instead, from where
 // its chromaticity (which shading leaves) lies between the ball's core and
 // the carpet around it (carpet-colored samples, not a line or wall beside
-// the ball, where enough are), weighs blur on both rims alike. A sample that is
-// no mix of the two (a marker nearby) weighs nothing. (cu, cv) in: the
+// the ball, where enough are), weighs blur on both rims alike. A sample
+// that is no mix of the two (a marker nearby) weighs nothing. (cu, cv) in: the
 // yes/no centroid; out: the weighted one, unless core or carpet is missing.
 void softCentroid(const float* du, const float* dv, const ColorVec* color, const uint8_t* is_ball,
                   const uint8_t* is_carpet, int n, double r, double& cu, double& cv) {
@@ -106,7 +106,7 @@ bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, d
   if (origin.u - reach < 0 || origin.v - reach < 0 || origin.u + reach > w - 1 || origin.v + reach > h - 1)
     return false;
   // The lattice's samples (offsets from the origin, px), their colors and
-  // whether each is ball-colored; the ball-colored first.
+  // whether each is ball-colored or carpet-colored.
   std::array<float, kMaxSide * kMaxSide> du, dv;
   std::array<ColorVec, kMaxSide * kMaxSide> color;
   std::array<uint8_t, kMaxSide * kMaxSide> is_ball, is_carpet;
