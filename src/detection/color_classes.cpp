@@ -84,6 +84,11 @@ TwoMeansResult twoMeans(const ColorVec* samples, int n, const ColorVec prior[2],
   if (n_externals == 0) d_e = 0;
   const float d_c = colorDistance(m[0], m[1]);
   if (d_c < 0.5f * (d_e - d_s)) return oneCluster();
+  // Nor are two means within twice the least reach of a class: a split of
+  // one class by its noise, which the test above lets pass where an
+  // external lies near (a yellow-green marker beside yellow under tungsten
+  // light). Green and pink under saturation 0.4 lie four times as far apart.
+  if (d_c < 2 * kMinClassRadius) return oneCluster();
 
   // Keep the class order that fits the priors best.
   const float keep = colorDistance(m[0], prior[0]) + colorDistance(m[1], prior[1]);
@@ -133,6 +138,21 @@ ColorVec ColorMap::apply(const ColorVec& c) const {
   for (int k = 0; k < 3; ++k)
     r.c[k] = static_cast<float>(m_[k][0] * c.c[0] + m_[k][1] * c.c[1] + m_[k][2]);
   return r;
+}
+
+void orderByRatio(TwoMeansResult& r, uint8_t* labels, int n, int num, int den, const float* white) {
+  auto ratio = [&](const float* c) { return c[num] / std::max(c[den], 1e-3f); };
+  bool swap = false;
+  if (r.count[0] > 0 && r.count[1] > 0) {
+    swap = ratio(r.mean[1].c) < ratio(r.mean[0].c);
+  } else if (white && n > 0) {
+    const int cls = r.count[0] > 0 ? 0 : 1;
+    swap = (ratio(r.mean[cls].c) > ratio(white)) != (cls == 1);
+  }
+  if (!swap) return;
+  std::swap(r.mean[0], r.mean[1]);
+  std::swap(r.count[0], r.count[1]);
+  for (int i = 0; i < n; ++i) labels[i] = static_cast<uint8_t>(1 - labels[i]);
 }
 
 }  // namespace dv

@@ -47,6 +47,10 @@ inline ColorVec colorMix(const ColorVec& a, float wa, const ColorVec& b, float w
   return r;
 }
 
+// The least distance (chromaticity units) a class reaches from its color:
+// a blob's mean color varies by a few, and one or two samples give no spread.
+constexpr float kMinClassRadius = 8.f;
+
 struct TwoMeansResult {
   ColorVec mean[2];     // class colors of this frame (c_c), class order as `prior`
   int count[2] = {0, 0};
@@ -61,6 +65,15 @@ struct TwoMeansResult {
 // their mean. No allocation.
 TwoMeansResult twoMeans(const ColorVec* samples, int n, const ColorVec prior[2],
                         const ColorVec* externals, int n_externals, uint8_t* labels);
+
+// Which of twoMeans's two clusters is which class, from an order that no
+// global cast, saturation or gamma changes: the ratio of channel `num` to
+// channel `den` is the larger in class 1 (blue's blue to green against
+// yellow's; pink's red to green against green's). One cluster alone is
+// class 1 when its ratio is above that of `white` (the lines' RGB; nullptr
+// where unknown: the priors' choice stands). Swaps the means, counts and
+// the n `labels` where the priors chose the other way round.
+void orderByRatio(TwoMeansResult& r, uint8_t* labels, int n, int num, int den, const float* white);
 
 // One learned class color with retention and reference forces (eq. 5.25).
 struct ColorClass {

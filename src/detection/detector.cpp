@@ -10,12 +10,9 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   blobs.reserve(4096);
   hyps.reserve(1024);
   robots.reserve(64);
-  tracks.reserve(64);
-  ball_tracks.reserve(16);
+  robot_positions.reserve(64);
   ball_cands.reserve(1024);
   border_balls.reserve(64);
-  track_match.reserve(64);
-  track_taken.reserve(64);
   samples.reserve(512);
   labels.reserve(512);
   sample_owner.reserve(512);
@@ -25,6 +22,8 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
 
 void Detector::Impl::setOptions(const DetectorOptions& o) {
   opt = o;
+  tracker.setOptions(RobotTrackerOptions::from(o));
+  ball_tracker.setOptions({field.withBoundary(), o.ball_radius, o.max_ball_speed, o.max_robot_speed});
   ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
   const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
                                        &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
@@ -37,8 +36,8 @@ void Detector::Impl::setOptions(const DetectorOptions& o) {
 void Detector::Impl::reset() {
   for (auto& c : classes) c.reset();
   color_map.reset();
-  tracks.clear();
-  ball_tracks.clear();
+  tracker.clear();
+  ball_tracker.clear();
   have_frame = false;
 }
 
@@ -80,8 +79,8 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   // Time going backwards or a long gap: the frames are unrelated.
   new_scene = have_frame && (t <= last_t || t - last_t > 0.5);
   if (new_scene) {
-    tracks.clear();
-    ball_tracks.clear();
+    tracker.clear();
+    ball_tracker.clear();
   }
   plane_height = list.plane_height;
   health = {};
@@ -110,7 +109,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
   }
   if (opt.tracking) {
-    if (!have_frame) tracks.clear();
+    if (!have_frame) tracker.clear();
     track(t);
   }
   findBalls(t, opt.tracking, out);

@@ -3,18 +3,6 @@
 
 namespace dv {
 
-FieldMm Detector::Impl::reflectAtWalls(FieldMm from, FieldMm p) const {
-  const double r = opt.ball_radius;
-  auto mirror = [](double v0, double v, double lo, double hi) {
-    if (hi <= lo || v0 < lo || v0 > hi) return v;  // not between the walls
-    if (v > hi) v = std::max(lo, 2 * hi - v);
-    if (v < lo) v = std::min(hi, 2 * lo - v);
-    return v;
-  };
-  return {mirror(from.x, p.x, ball_area.x_min + r, ball_area.x_max - r),
-          mirror(from.y, p.y, ball_area.y_min + r, ball_area.y_max - r)};
-}
-
 float Detector::Impl::explainedByNone(const float rgb[3], const ClippedColor& seen,
                                       float min_brightness) const {
   if (!frame_seen[kYellow] || rgb[0] + rgb[1] + rgb[2] < min_brightness) return 0;
@@ -42,12 +30,6 @@ namespace {
 // A border ball's strength: its fit's overlap (border_balls.h), full from
 // that of a disc cut cleanly by a line with a pixel of blur.
 constexpr double kBorderFullOverlap = 0.8;
-// How far back and ahead of a tracked ball its echoes lie, in time at its
-// speed: the span of a stream's reference frames (at 60 fps a group of
-// B-frames spans 4 frames), as long as a ball track survives a gap.
-constexpr double kEchoTime = 0.1;
-// A ball track continued this many frames has an established course.
-constexpr int kEstablishedHits = 3;
 
 }  // namespace
 
@@ -119,25 +101,6 @@ class Detector::Impl::BallColorJudge final : public BallColorTest {
   float min_brightness_;
 };
 
-bool Detector::Impl::isEcho(const BallCandidate& c, double t) const {
-  for (const BallTrack& bt : ball_tracks) {
-    if (!bt.confirmed || bt.t[1] != t || bt.history < 2 || !(bt.t[1] > bt.t[0])) continue;
-    // Below the ball that holds the track, unless the track has held it
-    // for frames (its course is then better evidence than one blob's
-    // strength) or a streak holds it (a streak's rank is a shape measure
-    // that says nothing against a round blob's).
-    if (!(c.rank < bt.rank || bt.streak || bt.hits >= kEstablishedHits)) continue;
-    const double dx = bt.pos[1].x - bt.pos[0].x, dy = bt.pos[1].y - bt.pos[0].y;
-    const double step = std::hypot(dx, dy);
-    if (step <= 0) continue;
-    const double reach = step / (bt.t[1] - bt.t[0]) * kEchoTime;
-    const double ex = c.pos.x - bt.pos[1].x, ey = c.pos.y - bt.pos[1].y;
-    const double along = (ex * dx + ey * dy) / step, across = std::abs(ex * dy - ey * dx) / step;
-    if (std::abs(along) <= reach && across <= 2 * opt.ball_radius) return true;
-  }
-  return false;
-}
-
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
   // Strength reference: the median score of this frame's robot blobs.
@@ -164,29 +127,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     std::nth_element(score_buf.begin(), mid, score_buf.end());
     min_ball_brightness = kTopBrightness * *mid;
   }
-  // Ball predictions: straight on from the last two frames, mirrored at
-  // the walls it would cross.
-  for (auto& bt : ball_tracks) {
-    bt.predicted = bt.pos[1];
-    const double dt = std::max(0.0, t - bt.t[1]);
-    const double reach = opt.max_ball_speed * std::min(dt, 0.1);
-    if (bt.history >= 2 && bt.t[1] > bt.t[0]) {
-      const double f = dt / (bt.t[1] - bt.t[0]);
-      bt.predicted = reflectAtWalls(bt.pos[1], {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
-                                     bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)});
-      bt.gate = 30 + 0.5 * reach;
-    } else {
-      bt.gate = 30 + reach;
-    }
-    // Next to a robot the ball may have been kicked in any direction: the
-    // track also takes what it could reach from its last position.
-    bt.kick_gate = 0;
-    const double touch = RobotPatternGeometry::kMaxRadius + opt.ball_radius +
-                         (opt.max_ball_speed + opt.max_robot_speed) * std::min(dt, 0.1);
-    for (const auto& r : robots)
-      if (dist(bt.pos[1], r.pose.position) < touch) bt.kick_gate = 30 + reach;
-    bt.confirmed = false;
-  }
+  robot_positions.clear();
+  for (const auto& r : robots) robot_positions.push_back(r.pose.position);
+  ball_tracker.predict(t, robot_positions.data(), static_cast<int>(robot_positions.size()));
   const BallColorJudge judge(*this, min_ball_brightness);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
   // Rules: at least 80 % of the ball is outside every robot's top.
@@ -200,18 +143,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // Temporal consistency: the ball track it continues, if any.
   auto temporalOf = [&](BallCandidate& c) {
     if (!tracking || !have_frame || new_scene) return 1.0;
-    double best = std::numeric_limits<double>::max();
-    for (size_t k = 0; k < ball_tracks.size(); ++k) {
-      const BallTrack& bt = ball_tracks[k];
-      double d = dist(c.pos, bt.predicted);
-      if (d >= bt.gate) {
-        // Kicked: ranked behind any candidate on the predicted course.
-        const double from_last = dist(c.pos, bt.pos[1]);
-        if (from_last >= bt.kick_gate) continue;
-        d = bt.gate + from_last;
-      }
-      if (d < best) best = d, c.track = static_cast<int>(k), c.kicked = d >= bt.gate;
-    }
+    ball_tracker.match(c);
     return c.track >= 0 ? 1.0 : 0.85;
   };
   ColorVec field_sum;
@@ -242,6 +174,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     BallCandidate c;
     c.blob = i;
     c.pos = p;
+    c.streak = b.streak;
     const double temporal = temporalOf(c);
     c.confidence = color_conf * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
@@ -265,7 +198,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (c.confidence < opt.min_ball_confidence) continue;
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
                                     [&](const BallCandidate& o) {
-                                      return o.border < 0 && !blobs[o.blob].streak &&
+                                      return o.border < 0 && !o.streak &&
                                              dist(o.pos, c.pos) < 4 * opt.ball_radius;
                                     }),
                      ball_cands.end());
@@ -288,11 +221,10 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // kicked from a robot) or where nothing else in the frame is a ball: a
   // colored region that stands out is weaker evidence than a round blob.
   bool round_ball = false;
-  auto isStreak = [&](const BallCandidate& c) { return c.blob >= 0 && blobs[c.blob].streak; };
-  for (const auto& c : ball_cands) round_ball |= !isStreak(c);
+  for (const auto& c : ball_cands) round_ball |= !c.streak;
   if (round_ball) {
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
-                                    [&](const BallCandidate& c) { return isStreak(c) && c.track < 0; }),
+                                    [&](const BallCandidate& c) { return c.streak && c.track < 0; }),
                      ball_cands.end());
   }
 
@@ -302,78 +234,14 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // (A streak's color is diluted by the carpet it passed over; a border
   // ball's is its visible part's, judged by pixels.)
   if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && ball_cands[0].blob >= 0 &&
-      !blobs[ball_cands[0].blob].streak)
+      !ball_cands[0].streak)
     classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
   if (field_n > 0) {
     for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
     classes[kField].update(field_sum, fp, fr);
   }
 
-  if (tracking) {
-    // A streak and a round blob where the ball last lay both continuing its
-    // track: the ball was kicked, and the round blob is its stale picture
-    // (a compressed stream's copied blocks). A ball cannot lie still and
-    // move at once, and a copied picture does not blur: the streak takes
-    // the track, the round blob is dropped with the echoes.
-    for (auto& c : ball_cands) {
-      if (c.track < 0 || isStreak(c)) continue;
-      const FieldMm lay = ball_tracks[c.track].pos[1];
-      if (dist(c.pos, lay) > 2 * opt.ball_radius) continue;
-      for (const auto& s : ball_cands)
-        if (s.track == c.track && isStreak(s) && dist(s.pos, lay) > 4 * opt.ball_radius) {
-          c.track = -1, c.stale = true;
-          break;
-        }
-    }
-    // A streak where its track's course puts it is that ball in motion:
-    // nothing else explains both the blur and the place. Such streaks
-    // continue their tracks first, then every candidate by confidence.
-    const auto onCourseStreak = [&](const BallCandidate& c) { return c.track >= 0 && !c.kicked && isStreak(c); };
-    for (const bool first : {true, false}) {
-      for (auto& c : ball_cands) {
-        if (onCourseStreak(c) != first) continue;
-        if (c.track < 0 || ball_tracks[c.track].confirmed) {
-          c.track = -1;
-          continue;
-        }
-        BallTrack& bt = ball_tracks[c.track];
-        bt.pos[0] = bt.pos[1];
-        bt.t[0] = bt.t[1];
-        bt.pos[1] = c.pos;
-        bt.t[1] = t;
-        bt.history = 2;
-        ++bt.hits;
-        bt.confirmed = true;
-        bt.rank = c.rank;
-        bt.streak = isStreak(c);
-      }
-    }
-    // What continues no track but lies on the course of a ball tracked in
-    // this frame, within the distance it covers in kEchoTime, and ranks
-    // below it, is an echo of that ball: a compressed stream's stale or
-    // borrowed blocks (a B-frame copies the ball from the frames before and
-    // after) show it where it lay and where it will be. One ball cannot be
-    // in two places on its own course.
-    ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
-                                    [&](const BallCandidate& c) { return c.stale || (c.track < 0 && isEcho(c, t)); }),
-                     ball_cands.end());
-    // Unconfirmed ball tracks survive a short gap (flicker, occlusion).
-    ball_tracks.erase(std::remove_if(ball_tracks.begin(), ball_tracks.end(),
-                                     [&](const BallTrack& bt) {
-                                       return !bt.confirmed && t - bt.t[1] > 0.1;
-                                     }),
-                      ball_tracks.end());
-    for (const auto& c : ball_cands) {
-      if (c.track >= 0 || ball_tracks.size() >= 16) continue;
-      BallTrack bt;
-      bt.pos[1] = c.pos;
-      bt.t[1] = t;
-      bt.history = 1;
-      bt.hits = 1;
-      bt.confirmed = true;
-      ball_tracks.push_back(bt);
-    }
-  }
+  if (tracking) ball_tracker.update(t, ball_cands);
 
   const double plane = plane_height;
   for (const auto& c : ball_cands) {

@@ -1,24 +1,12 @@
 #include "detection/detector_impl.h"
+#include "detection/partial_ids.h"
 #include "detection/seen_color.h"
 
 namespace dv {
 
 void Detector::Impl::orderByRatio(TwoMeansResult& r, int num, int den) {
-  const int n = static_cast<int>(samples.size());
-  auto ratio = [&](const float* c) { return c[num] / std::max(c[den], 1e-3f); };
-  bool swap = false;
-  if (r.count[0] > 0 && r.count[1] > 0) {
-    swap = ratio(r.mean[1].c) < ratio(r.mean[0].c);
-  } else if (neutral.valid && n > 0) {
-    // One cluster: which side of the lines' white it lies on.
-    const int cls = r.count[0] > 0 ? 0 : 1;
-    const bool above = ratio(r.mean[cls].c) > ratio(neutral.rgb);
-    swap = above != (cls == 1);
-  }
-  if (!swap) return;
-  std::swap(r.mean[0], r.mean[1]);
-  std::swap(r.count[0], r.count[1]);
-  for (int i = 0; i < n; ++i) labels[i] = static_cast<uint8_t>(1 - labels[i]);
+  dv::orderByRatio(r, labels.data(), static_cast<int>(samples.size()), num, den,
+                   neutral.valid ? neutral.rgb : nullptr);
 }
 
 TwoMeansResult Detector::Impl::clusterCenters() {
@@ -150,34 +138,7 @@ void Detector::Impl::classifyRobots() {
     r.colors = colors;
     r.id = patternId(colors);
   }
-  // A robot missing side blobs has two (one missing) or four (two, at the
-  // image border) possible ids; ids are unique per team, so the ids fully
-  // seen teammates hold are ruled out. The guess is the first one left,
-  // the missing blobs taken as green before pink; the id is known when
-  // one is left.
-  for (auto& r : robots) {
-    r.id_known = r.fullPattern();
-    if (r.fullPattern()) continue;
-    int missing[4], m = 0;
-    for (int s = 0; s < 4; ++s)
-      if (!(r.seen_sides >> s & 1)) missing[m++] = s;
-    auto taken = [&](int id) {
-      for (const auto& o : robots)
-        if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
-      return false;
-    };
-    int free = 0;
-    std::array<MarkerColor, 4> guess = r.colors;
-    for (int pinks = 0; pinks < (1 << m); ++pinks) {
-      auto c = r.colors;
-      for (int i = 0; i < m; ++i) c[missing[i]] = pinks >> i & 1 ? MarkerColor::Pink : MarkerColor::Green;
-      if (taken(patternId(c))) continue;
-      if (free++ == 0) guess = c;
-    }
-    r.colors = guess;
-    r.id = patternId(guess);
-    r.id_known = free == 1;
-  }
+  resolvePartialIds(robots);
 
   // How this camera shows the pattern colors tells where its orange is.
   ColorVec ref[4], seen[4];

@@ -16,11 +16,13 @@
 #include <vector>
 
 #include "core/error.h"
+#include "detection/ball_tracker.h"
 #include "detection/blob_index.h"
 #include "detection/border_balls.h"
 #include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
+#include "detection/robot_tracker.h"
 #include "detection/weak_sides.h"
 #include "pipeline/view_stretch.h"
 
@@ -59,13 +61,9 @@ constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
 constexpr float kOverCarpet = 1.25f;
 constexpr double kCarpetProbeDistance = 115;
 constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
-// Robots a frame and the tracks must both have before their overlap can say
-// whether the frame continues the tracked scene.
-constexpr int kSceneCheckMinRobots = 4;
 // A class reaches kClassSpreads times the spread of its samples in this
-// frame, at least kMinClassRadius (chromaticity units of color_classes.h:
-// one or two robots give no spread; a blob's mean color varies by a few).
-constexpr float kClassSpreads = 3.f, kMinClassRadius = 8.f;
+// frame, at least kMinClassRadius (color_classes.h).
+constexpr float kClassSpreads = 3.f;
 // A ball of an unexpected shade is at least this share as saturated as the
 // frame's yellow (line and carpet mixes are far less).
 constexpr float kBallSaturationShare = 0.5f;
@@ -86,66 +84,6 @@ struct FrameBlob {
   bool streak = false;  // a fast-ball candidate: never part of a robot
   int robot = -1;  // accepted robot using this blob
   bool implausible_center = false;  // its robot was dropped for its center color
-};
-
-struct Hypothesis {
-  int blob[kPatternSlots];
-  int slot[kPatternSlots];
-  int n = 0;
-  PatternPose pose;  // fitted at the search height, then at the team height
-  double rank = 0;
-  double confidence = 0;
-  Team team = Team::Yellow;
-  int id = 0;
-  int track = -1;
-  std::array<MarkerColor, 4> colors{};  // side colors, valid where seen
-  uint8_t seen_sides = 0;               // bit s-1 set: slot s was seen
-  // The id was seen whole, follows from the ids others hold, or comes from
-  // a track that once saw the robot whole.
-  bool id_known = false;
-  bool fullPattern() const { return seen_sides == 0xF; }
-};
-
-struct RobotTrack {
-  Team team = Team::Yellow;  // committed identity
-  int id = 0;
-  Team pending_team = Team::Yellow;  // contrary evidence being counted
-  int pending_id = -1;
-  int pending_count = 0;
-  bool id_certain = false;  // seen with all four side blobs at least once
-  FieldMm pos[2];  // [1] newest
-  double orientation[2] = {0, 0};
-  double t[2] = {0, 0};
-  int history = 0;  // valid entries in pos/orientation/t (1 or 2)
-  bool confirmed = false;
-  // prediction for the current frame
-  FieldMm predicted;
-  double predicted_orientation = 0;
-  double uncertainty = 0;
-};
-
-struct BallTrack {
-  FieldMm pos[2];
-  double t[2] = {0, 0};
-  int history = 0;
-  int hits = 0;
-  bool confirmed = false;
-  FieldMm predicted;
-  double gate = 0;       // around the prediction
-  double kick_gate = 0;  // around the last position, next to a robot
-  double rank = 0;       // of the candidate that continued it this frame
-  bool streak = false;   // that candidate was a streak (its rank is of another scale)
-};
-
-struct BallCandidate {
-  int blob = -1;    // a blob, or -1 with
-  int border = -1;  // a ball cut by the image border (Impl::border_balls)
-  FieldMm pos;
-  double confidence = 0;
-  double rank = 0;  // orders equal confidences: the stronger evidence first
-  int track = -1;
-  bool kicked = false;  // continues its track only as kicked (outside its course's gate)
-  bool stale = false;  // where a kicked ball lay (Impl::findBalls)
 };
 
 inline double sq(double v) { return v * v; }
@@ -199,11 +137,10 @@ struct Detector::Impl {
   int n_strong = 0;
   std::vector<Hypothesis> hyps;
   std::vector<Hypothesis> robots;  // accepted
-  std::vector<RobotTrack> tracks;
-  std::vector<BallTrack> ball_tracks;
+  RobotTracker tracker;
+  BallTracker ball_tracker;
+  std::vector<FieldMm> robot_positions;  // of the accepted robots, for the ball tracker
   std::vector<BallCandidate> ball_cands;
-  std::vector<int> track_match;      // per accepted robot: track index or -1
-  std::vector<uint8_t> track_taken;  // per track
   std::vector<ColorVec> samples;
   std::vector<uint8_t> labels;
   std::vector<int> sample_owner;
@@ -233,10 +170,6 @@ struct Detector::Impl {
     out = {cam_pos.x() + s * (p.x - cam_pos.x()), cam_pos.y() + s * (p.y - cam_pos.y())};
     return true;
   }
-
-  // A ball predicted at p from `from`, mirrored back at the walls (ball
-  // radius from them) its straight course would cross: a bounce.
-  FieldMm reflectAtWalls(FieldMm from, FieldMm p) const;
 
   // ---------------------------------------------------------------- frame
   void prepare(const BlobList& list);
@@ -352,15 +285,12 @@ struct Detector::Impl {
   // robot's center must look like this frame's yellow or blue rather than
   // like the field or a white line; the team colors come from clustering
   // the centers first, so no fixed hue is involved.
+  // color_classes.h's orderByRatio over `samples` and `labels`, against
+  // the lines' white of this frame.
+  void orderByRatio(TwoMeansResult& r, int num, int den);
   // Center blob colors of the robot hypotheses in two classes, yellow vs
   // blue, with green and pink as the external colors (eq. 5.24); the labels
   // are left in `labels`.
-  // Which of two clusters of `samples` (labels in `labels`) is which class
-  // follows from an order no global cast, saturation or gamma changes: the
-  // ratio of channel num to channel den is the larger in class 1 (blue's
-  // blue to green, pink's red to green). One cluster is class 1 when its
-  // ratio is above the lines' white's. Without the lines, the priors decide.
-  void orderByRatio(TwoMeansResult& r, int num, int den);
   TwoMeansResult clusterCenters();
 
   // Drops the robots whose center looks like the field or a line more than
@@ -402,38 +332,20 @@ struct Detector::Impl {
   }
 
   // ----------------------------------------------------------- tracking
-  void predictTracks(double t);
-
-  void associateTracks();
-
-  // A track that found no full pattern: look for two or more of its blobs
-  // around the predicted blob positions (§5.3.6), colors agreeing with its
-  // identity.
-  void recoverTrack(int k);
-
-  void updateTrack(RobotTrack& tr, const Hypothesis& h, double t);
-
-  // Identity hysteresis: a tracked robot keeps team and id until several
-  // consecutive frames agree on the same different identity.
-  void applyIdentity(RobotTrack& tr, Hypothesis& h);
-
-  // A frame that shares few of its robots with the tracks shows an unrelated
-  // scene (independent images played as a sequence): a frame that follows
-  // the last one re-finds nearly every robot near its prediction, while a
-  // new scene meets old tracks only by chance. A dark or occluded frame has
-  // few fresh robots, and those it has still meet their tracks.
-  bool unrelatedToTracks() const;
-
+  // The robot tracker (robot_tracker.h) over this frame's robots; a frame
+  // that shows an unrelated scene drops the ball tracks too.
   void track(double t);
+
+  // A track no robot of this frame continued: two or more of its blobs
+  // around the predicted blob positions (§5.3.6), colors agreeing with its
+  // identity, make a robot appended to `out`.
+  bool recoverTrack(const RobotTrack& tr, int k, std::vector<Hypothesis>& out);
 
   // --------------------------------------------------------------- balls
   void findBalls(double t, bool tracking, Detections& out);
   // Whether a color is the ball's in this frame, and how clearly
   // (detector_balls.cpp): for blobs and the border's samples alike.
   class BallColorJudge;
-  // Whether candidate c, continuing no track, is an echo of a ball tracked
-  // in this frame (t): on its course and ranked below it.
-  bool isEcho(const BallCandidate& c, double t) const;
   // For a blob of mean color rgb (seen: the same, clipping considered):
   // 0 unless yellow robots were seen, it is at least min_brightness
   // (r + g + b) bright, about as saturated as the yellow class

@@ -1,0 +1,31 @@
+#include "detection/partial_ids.h"
+
+namespace dv {
+
+void resolvePartialIds(std::vector<Hypothesis>& robots) {
+  for (auto& r : robots) {
+    r.id_known = r.fullPattern();
+    if (r.fullPattern()) continue;
+    int missing[4], m = 0;
+    for (int s = 0; s < 4; ++s)
+      if (!(r.seen_sides >> s & 1)) missing[m++] = s;
+    auto taken = [&](int id) {
+      for (const auto& o : robots)
+        if (&o != &r && o.fullPattern() && o.team == r.team && o.id == id) return true;
+      return false;
+    };
+    int free = 0;
+    std::array<MarkerColor, 4> guess = r.colors;
+    for (int pinks = 0; pinks < (1 << m); ++pinks) {
+      auto c = r.colors;
+      for (int i = 0; i < m; ++i) c[missing[i]] = pinks >> i & 1 ? MarkerColor::Pink : MarkerColor::Green;
+      if (taken(patternId(c))) continue;
+      if (free++ == 0) guess = c;
+    }
+    r.colors = guess;
+    r.id = patternId(guess);
+    r.id_known = free == 1;
+  }
+}
+
+}  // namespace dv
