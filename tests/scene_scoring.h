@@ -200,6 +200,13 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
         if (r.team == team && r.id == static_cast<int>(t.robot_id())) {
           ++s.id_ok;
           s.full_id_ok += sides == 4;
+        } else if (std::getenv("DV_MISSES")) {
+          std::printf("wrong id: %s %u at (%.0f, %.0f) reported as %s %d, side blobs seen %d, orientation %.1f deg "
+                      "(true %.1f)\n",
+                      team == Team::Yellow ? "yellow" : "blue", t.robot_id(), t.x(), t.y(),
+                      r.team == Team::Yellow ? "yellow" : "blue", r.id, sides, r.orientation * 180 / kPi,
+                      t.orientation() * 180 / kPi);
+          printMiss(t, frame.image, cam, blobs);
         }
         s.pos_err.push_back(best_d);
         s.ang_err.push_back(std::abs(std::remainder(r.orientation - t.orientation(), 2 * kPi)));

@@ -115,7 +115,10 @@ void Detector::Impl::classifyRobots() {
       if (!blobs[r.blob[i]].weak) side_of[m] = i, local[m++] = blobs[r.blob[i]].color;
     const ColorVec prior[2] = {frame_color[kGreen], frame_color[kPink]};
     const ColorVec ext[1] = {blobs[r.blob[0]].color};
-    const TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
+    TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
+    // Two colors on one robot: the redder is pink, whatever the cast (a
+    // pale pink under a magenta cast may lie nearer the frame's green).
+    dv::orderByRatio(res, lab, m, 0, 1, nullptr);
     std::array<MarkerColor, 4> colors;
     colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
     r.seen_sides = 0;
@@ -202,6 +205,10 @@ void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, con
 }
 
 void Detector::Impl::refit(Hypothesis& h) const {
+  if (h.n == 1) {  // a center alone: along its ray, the orientation read from the frame
+    h.pose.position = blobs[h.blob[0]].at_team[h.team == Team::Yellow ? 0 : 1];
+    return;
+  }
   FieldMm pts[kPatternSlots];
   int slots[kPatternSlots];
   const int t = h.team == Team::Yellow ? 0 : 1;

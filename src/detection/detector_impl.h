@@ -48,8 +48,11 @@ constexpr double kWeakPairAngleTolerance = 0.35;
 // is (the pixel stage takes peaks only where that disc is seen).
 constexpr double kEdgeRankFactor = 0.6;
 // A pattern of a center and one side blob, its other slots read from the
-// frame, ranks at this fraction of one of a center and two.
+// frame, ranks at this fraction of one of a center and two; one of the
+// center alone at this fraction of that.
 constexpr double kOneSideRankFactor = 0.8;
+// Points on the side-blob ring a center alone is read at (5 degrees apart).
+constexpr int kRingPoints = 72;
 // Brightness (r + g + b) as a share of the center blob's: a side blob is
 // at least kTopBrightness (the markers are about as bright as the centers;
 // darker peaks lie on the robot top), a marker read from the frame where no
@@ -243,6 +246,15 @@ struct Detector::Impl {
   // at the others (else the orientation would be a guess). Ranked below
   // every pattern of two side peaks.
   void completeFromOneSide(int c, const int* nbr, int k, Hypothesis& best);
+
+  // A center blob (team-colored, not the ball's) without a side peak on
+  // its ring: the frame is read along the side-blob ring, and where exactly
+  // one orientation puts all four slots on bright points (markers beside
+  // the dark top) and each slot then shows a marker in full view
+  // (slotShowsMarker), that is the robot: pale dots that made no peak at
+  // all. The orientation is refined from where the bright arcs lie. Ranked
+  // below every pattern with a side peak; reported only with its id known.
+  void completeFromCenter(int c, Hypothesis& best);
 
   // Center blob c with each pair of its neighbours nbr[0, k) that lie on the
   // side-blob ring as far apart in angle as two slots: fn(blob, slot, pose)
