@@ -1,4 +1,5 @@
 #include "detection/detector_impl.h"
+#include "detection/ring_orientation.h"
 #include "detection/seen_color.h"
 
 namespace dv {
@@ -132,8 +133,16 @@ void Detector::Impl::completeWithWeak(int c, const int* nbr, int k, Hypothesis& 
     double error[kPatternSlots];
     FitTolerance weak_tol = tol;
     weak_tol.mm = opt.weak_side_tolerance;
-    const int n_weak = findWeakSlots(pose, filled, weak_index, weak_tol, found, error);
+    int n_weak = findWeakSlots(pose, filled, weak_index, weak_tol, found, error);
+    // A weak peak much darker than the center is the robot top's (the dark
+    // rim around a pale dot), not a marker.
+    for (int s = 1; s < kPatternSlots; ++s)
+      if (found[s] >= 0 && brightness(n_strong + found[s]) < kTopBrightness * brightness(c)) found[s] = -1, --n_weak;
     if (n_weak == 0 || n + n_weak < min_n - marker_ok) return;
+    // A diagonal pair fits both diagonals, and a marker of one placement
+    // lies near a slot of the other: where the ring shows the robot's
+    // orientation, the placement must agree with it.
+    if (n == 3 && std::abs(slot[1] - slot[2]) == 2 && !agreesWithRing(c, pose)) return;
     if (n + n_weak < min_n)
       for (int s = 1; s < kPatternSlots; ++s)
         if (!(filled >> s & 1u) && found[s] < 0 && !slotShowsMarker(pose, s, c)) return;
@@ -297,6 +306,13 @@ void Detector::Impl::completeFromTwoSides(int c, const int* nbr, int k, Hypothes
   if (best.rank <= 0 && center_like) completeFromCenter(c, best);
 }
 
+bool Detector::Impl::agreesWithRing(int c, const PatternPose& pose) const {
+  if (!opt.probe_missing_sides) return true;
+  const FieldMm cp = blobs[c].at_ref;
+  const auto o = ringOrientation(frame_view, camera, {cp.x, cp.y, ref_height}, kMarkerBrightness * brightness(c));
+  return !o || std::abs(wrapAngle(pose.orientation - *o)) <= kRingAgreement;
+}
+
 void Detector::Impl::completeFromCenter(int c, Hypothesis& best) {
   if (!opt.probe_missing_sides || !frame_view.image) return;
   // Not the ball: a center nearer to the orange class than to both teams'
@@ -306,63 +322,12 @@ void Detector::Impl::completeFromCenter(int c, Hypothesis& best) {
                                std::min(seen.distance(classes[kYellow].color), seen.distance(classes[kBlue].color)))
     return;
   const FieldMm cp = blobs[c].at_ref;
-  const double r = RobotPatternGeometry::kSideBlobDistance;
-  const float min_bright = kMarkerBrightness * brightness(c);
-  std::array<float, kRingPoints> bright;
-  for (int i = 0; i < kRingPoints; ++i) {
-    const double a = 2 * kPi * i / kRingPoints;
-    const auto px = camera.fieldToImage({cp.x + r * std::cos(a), cp.y + r * std::sin(a), ref_height});
-    bright[i] = 0;
-    if (!px) return;
-    float rgb[3];
-    frameRgbAt(frame_view, px->u, px->v, rgb);
-    bright[i] = rgb[0] + rgb[1] + rgb[2];
-  }
-  // Bright: nearer to the ring's brightest (the dots) than to its darkest
-  // (the top), and as bright as a marker may be.
-  const auto [lo, hi] = std::minmax_element(bright.begin(), bright.end());
-  const float thr = std::max(min_bright, 0.5f * (*lo + *hi));
-  const double step = 2 * kPi / kRingPoints;
-  auto ringIndex = [&](double a) {
-    const int i = static_cast<int>(std::lround(a / step)) % kRingPoints;
-    return i < 0 ? i + kRingPoints : i;
-  };
-  // Orientations (ring steps) that put every slot on a bright point.
-  std::array<bool, kRingPoints> fits;
-  int n_fit = 0;
-  for (int o = 0; o < kRingPoints; ++o) {
-    fits[o] = true;
-    for (int s = 1; s < kPatternSlots && fits[o]; ++s) fits[o] = bright[ringIndex(o * step + slotAngle(s))] >= thr;
-    n_fit += fits[o];
-  }
-  // One run of them, no wider than a quarter turn (else the ring is bright
-  // all round, or two orientations fit; two dots 65 degrees apart, each
-  // 36 degrees wide seen from the center, merge into one arc).
-  if (n_fit == 0 || n_fit > kRingPoints / 4) return;
-  int start = -1;
-  for (int o = 0; o < kRingPoints; ++o)
-    if (fits[o] && !fits[(o + kRingPoints - 1) % kRingPoints]) {
-      if (start >= 0) return;  // a second run
-      start = o;
-    }
-  if (start < 0) return;
-  double orientation = (start + 0.5 * (n_fit - 1)) * step;
-  // Refined: each slot's bright arc centered on it, by brightness weight.
-  double shift = 0;
-  for (int s = 1; s < kPatternSlots; ++s) {
-    const int mid = ringIndex(orientation + slotAngle(s));
-    double w_sum = 0, a_sum = 0;
-    for (int d = -3; d <= 3; ++d) {
-      const float w = bright[(mid + d + kRingPoints) % kRingPoints] - thr;
-      if (w <= 0) continue;
-      w_sum += w;
-      a_sum += w * wrapAngle(ringIndex(orientation + slotAngle(s)) * step + d * step - (orientation + slotAngle(s)));
-    }
-    if (w_sum > 0) shift += a_sum / w_sum / (kPatternSlots - 1);
-  }
+  const auto orientation = ringOrientation(frame_view, camera, {cp.x, cp.y, ref_height},
+                                           kMarkerBrightness * brightness(c));
+  if (!orientation) return;
   PatternPose pose;
   pose.position = cp;
-  pose.orientation = wrapAngle(orientation + shift);
+  pose.orientation = *orientation;
   pose.score = 1;
   for (int s = 1; s < kPatternSlots; ++s)
     if (slotOutOfView(pose, s) || !slotShowsMarker(pose, s, c)) return;

@@ -51,8 +51,11 @@ constexpr double kEdgeRankFactor = 0.6;
 // frame, ranks at this fraction of one of a center and two; one of the
 // center alone at this fraction of that.
 constexpr double kOneSideRankFactor = 0.8;
-// Points on the side-blob ring a center alone is read at (5 degrees apart).
-constexpr int kRingPoints = 72;
+// A pose agrees with the orientation read along its ring within this (rad):
+// the ring reads it to a degree or two, and the two placements a diagonal
+// pair of side blobs fits lie about 90 degrees apart.
+constexpr double kRingAgreement = 0.5;
+
 // Brightness (r + g + b) as a share of the center blob's: a side blob is
 // at least kTopBrightness (the markers are about as bright as the centers;
 // darker peaks lie on the robot top), a marker read from the frame where no
@@ -255,6 +258,10 @@ struct Detector::Impl {
   // all. The orientation is refined from where the bright arcs lie. Ranked
   // below every pattern with a side peak; reported only with its id known.
   void completeFromCenter(int c, Hypothesis& best);
+
+  // Whether `pose` agrees with the orientation the ring around center c
+  // shows (ring_orientation.h), where it shows one (else true).
+  bool agreesWithRing(int c, const PatternPose& pose) const;
 
   // Center blob c with each pair of its neighbours nbr[0, k) that lie on the
   // side-blob ring as far apart in angle as two slots: fn(blob, slot, pose)
