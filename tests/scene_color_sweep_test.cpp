@@ -106,8 +106,7 @@ const std::vector<Condition>& conditions() {
       // read at the robots' unfilled slots (pinkFromUnseenSlots), and id 9,
       // all four dots pink, is found from its center alone
       // (completeFromCenter). Recall 0.398 / 0.307 -> 0.932 -> 1.000 at
-      // both sizes; ids 0.977 (a robot with two green side blobs posed on
-      // the wrong pair of slots, open).
+      // both sizes, ids 1.000.
       {"magenta_cast_overexposed_pale_markers", [](SceneSpec& s, int) {
          cast(s, {1.2, 0.8, 1.2});
          s.lighting.exposure = 1.6;
