@@ -109,12 +109,16 @@ inline void sweepCondition(const Condition& c) {
     for (int k = 0; k < placements; ++k) score(conditionScene(c, k, half), 1, true, s);
     printRow(c.name, half ? "1224x1024" : "2448x2048", s);
     SCOPED_TRACE(std::string(c.name) + (half ? " 1224x1024" : " 2448x2048"));
-    EXPECT_GE(s.precision(), 0.98);
-    EXPECT_GE(s.detectableRecall(), 0.98);
+    // The bars, at both sizes: recall 0.99 with the right team and
+    // id, precision 0.995, ball recall 0.99, at most 0.02 false balls per
+    // frame (one ball per frame here).
+    EXPECT_GE(s.recall(), 0.99);
+    EXPECT_GE(s.idAccuracy(), 0.99);
+    EXPECT_GE(s.precision(), 0.995);
+    EXPECT_GE(s.detectableRecall(), 0.99);
     EXPECT_GE(s.fullPatternIdAccuracy(), 0.99);
     EXPECT_GE(s.ballRecall(), 0.99);
     EXPECT_GE(s.ballPrecision(), 0.98);
-    EXPECT_GE(s.recall(), half ? 0.95 : 0.99);
   }
 }
 
