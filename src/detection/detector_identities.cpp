@@ -191,41 +191,40 @@ void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, con
   Hypothesis at_team = r;
   refit(at_team);
   const double z = teamHeight(r.team);
-  if (r.seen_sides == 0) {
-    // No side peak at all: its four dots, read under the light they share,
-    // split by themselves where they are of two colors (the redder is
-    // pink, whatever the cast); one color alone is judged as below.
-    ColorVec dots[4];
-    int n = 0;
-    for (int s = 1; s < kPatternSlots; ++s) {
-      const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
-      const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
-      if (seen.share < opt.min_probe_share) break;
-      dots[n++] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
-    }
-    if (n == 4) {
-      const ColorVec prior[2] = {green, pink};
-      const ColorVec ext[1] = {blobs[r.blob[0]].color};
-      uint8_t lab[4];
-      TwoMeansResult res = twoMeans(dots, 4, prior, ext, 1, lab);
-      dv::orderByRatio(res, lab, 4, 0, 1, nullptr);
-      if (res.separated) {
-        for (int s = 1; s < kPatternSlots; ++s) colors[s - 1] = lab[s - 1] == 0 ? MarkerColor::Green : MarkerColor::Pink;
-        r.seen_sides = 0xF;
-        return;
-      }
-    }
-  }
+  // Each unfilled slot read once: the color there, if enough is in view.
+  ColorVec dot[4];
+  bool read[4] = {false, false, false, false};
+  int n_read = 0;
   for (int s = 1; s < kPatternSlots; ++s) {
     if (r.seen_sides >> (s - 1) & 1) continue;
     const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
     const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
     if (seen.share < opt.min_probe_share) continue;
-    const int label = weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), green, pink,
-                                    static_cast<float>(opt.weak_color_margin));
+    dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
+    read[s - 1] = true;
+    ++n_read;
+  }
+  if (r.seen_sides == 0 && n_read == 4) {
+    // No side peak at all: its four dots, read under the light they share,
+    // split by themselves where they are of two colors (the redder is
+    // pink, whatever the cast); one color alone is judged as below.
+    const ColorVec prior[2] = {green, pink};
+    const ColorVec ext[1] = {blobs[r.blob[0]].color};
+    uint8_t lab[4];
+    TwoMeansResult res = twoMeans(dot, 4, prior, ext, 1, lab);
+    dv::orderByRatio(res, lab, 4, 0, 1, nullptr);
+    if (res.separated) {
+      for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides = 0xF;
+      return;
+    }
+  }
+  for (int s = 0; s < 4; ++s) {
+    if (!read[s]) continue;
+    const int label = weakSideColor(dot[s], green, pink, static_cast<float>(opt.weak_color_margin));
     if (label < 0) continue;
-    colors[s - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
-    r.seen_sides |= static_cast<uint8_t>(1u << (s - 1));
+    colors[s] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
 }
 
