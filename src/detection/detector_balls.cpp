@@ -3,28 +3,6 @@
 
 namespace dv {
 
-float Detector::Impl::explainedByNone(const float rgb[3], const ClippedColor& seen,
-                                      float min_brightness) const {
-  if (!frame_seen[kYellow] || rgb[0] + rgb[1] + rgb[2] < min_brightness) return 0;
-  auto saturation = [](const float* c) {
-    const float hi = std::max({c[0], c[1], c[2]}), lo = std::min({c[0], c[1], c[2]});
-    return hi > 0 ? (hi - lo) / hi : 0.f;
-  };
-  if (saturation(rgb) < kBallSaturationShare * saturation(frame_color[kYellow].c)) return 0;
-  const float unit[3] = {1, 1, 1};
-  const float* white = neutral.valid ? neutral.rgb : unit;
-  const float h = colorHue(rgb, white);
-  const float yellow = colorHue(frame_color[kYellow].c, white);
-  const float pink = std::min(0.f, colorHue(frame_color[kPink].c, white));
-  if (!(h > pink && h < yellow)) return 0;
-  float rel = std::numeric_limits<float>::max();
-  for (int k : {kYellow, kPink, kWhite, kField}) {
-    const float radius = std::max(kClassSpreads * frame_spread[k], kMinClassRadius);
-    rel = std::min(rel, seen.distance(frame_color[k]) / radius);
-  }
-  return rel;
-}
-
 namespace {
 
 // A border ball's strength: its fit's overlap (border_balls.h), full from
@@ -32,74 +10,6 @@ namespace {
 constexpr double kBorderFullOverlap = 0.8;
 
 }  // namespace
-
-// The ball's color in one frame, as every ball candidate is judged: nearer
-// to the orange class than to every other class (the color it may have
-// had before a channel clipped counts: an overexposed ball looks
-// yellowish), or a round blob no pattern class explains (explainedByNone:
-// a ball of another shade than the one expected). A streak is the object's
-// color mixed with the carpet it crossed: it is compared with each class's
-// mixing line from the field color.
-class Detector::Impl::BallColorJudge final : public BallColorTest {
- public:
-  BallColorJudge(const Impl& d, float min_brightness)
-      : d_(d),
-        orange_(d.classes[kOrange].color),
-        mapped_orange_(d.color_map.apply(d.classes[kOrange].reference)),
-        min_brightness_(min_brightness) {}
-
-  // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
-  // nearest of the other classes.
-  double confidence(const float rgb[3], bool streak, int* nearest = nullptr) const {
-    const ClippedColor seen(rgb);
-    if (seen.saturated()) return 0;
-    const ColorVec& field_color = d_.frame_color[kField];
-    auto classDistance = [&](const ColorVec& c) {
-      return streak ? streakColorDistance(seen, field_color, c) : seen.distance(c);
-    };
-    float d_or = classDistance(orange_);
-    if (d_.color_map.valid()) d_or = std::min(d_or, classDistance(mapped_orange_));
-    float d_neg = std::numeric_limits<float>::max();
-    int nearest_neg = kField;
-    for (int k : {kField, kWhite, kPink, kGreen, kYellow, kBlue}) {
-      const float dk = k == kField ? seen.distance(field_color) : classDistance(d_.frame_color[k]);
-      if (dk < d_neg) d_neg = dk, nearest_neg = k;
-    }
-    if (nearest) *nearest = nearest_neg;
-    const float unexplained = streak ? 0.f : d_.explainedByNone(rgb, seen, min_brightness_);
-    if (d_or >= d_neg && unexplained <= 1) return 0;
-    const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
-    return std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
-  }
-  // As confidence() > 0, with the carpet (most of what the border's probes
-  // see) ruled out first: a color nearer to the field than to orange and
-  // within the field class's reach is neither nearer to orange nor
-  // unexplained.
-  bool isBall(const float rgb[3]) const override {
-    const ClippedColor seen(rgb);
-    if (seen.saturated()) return false;
-    if (withinFieldReach(seen)) {
-      float d_or = seen.distance(orange_);
-      if (d_.color_map.valid()) d_or = std::min(d_or, seen.distance(mapped_orange_));
-      if (seen.distance(d_.frame_color[kField]) <= d_or) return false;
-    }
-    return confidence(rgb, false) > 0;
-  }
-  bool isCarpet(const float rgb[3]) const override {
-    const ClippedColor seen(rgb);
-    return !seen.saturated() && withinFieldReach(seen);
-  }
-
- private:
-  bool withinFieldReach(const ClippedColor& seen) const {
-    const float reach = std::max(kClassSpreads * d_.frame_spread[kField], kMinClassRadius);
-    return seen.distance(d_.frame_color[kField]) <= reach;
-  }
-
-  const Impl& d_;
-  ColorVec orange_, mapped_orange_;
-  float min_brightness_;
-};
 
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
@@ -130,7 +40,17 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   robot_positions.clear();
   for (const auto& r : robots) robot_positions.push_back(r.pose.position);
   ball_tracker.predict(t, robot_positions.data(), static_cast<int>(robot_positions.size()));
-  const BallColorJudge judge(*this, min_ball_brightness);
+  for (int k = 0; k < kNumClasses; ++k) {
+    ball_colors.color[k] = frame_color[k];
+    ball_colors.spread[k] = frame_spread[k];
+    ball_colors.seen[k] = frame_seen[k];
+  }
+  ball_colors.color[kOrange] = classes[kOrange].color;
+  ball_colors.white = neutral;
+  ball_colors.yellow_hue_min = yellow_hue_min;
+  ball_colors.mapped_orange.reset();
+  if (color_map.valid()) ball_colors.mapped_orange = color_map.apply(classes[kOrange].reference);
+  const BallColorJudge judge(ball_colors, min_ball_brightness);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
   // Rules: at least 80 % of the ball is outside every robot's top.
   auto insideRobot = [&](const FieldMm& p) {

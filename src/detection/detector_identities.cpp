@@ -78,6 +78,12 @@ void Detector::Impl::classifyRobots() {
     health.teams_separated = res.separated;
     for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
+    // The reddest yellow center under the lines' white: a color redder
+    // than every one of them is no yellow the frame shows (explainedByNone).
+    yellow_hue_min = std::numeric_limits<float>::max();
+    if (neutral.valid)
+      for (int i = 0; i < nr; ++i)
+        if (labels[i] == 0) yellow_hue_min = std::min(yellow_hue_min, colorHue(blobs[robots[i].blob[0]].rgb, neutral.rgb));
   }
 
   // Side blobs of all robots: green vs pink; the team colors are external.
@@ -191,12 +197,12 @@ void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, con
   Hypothesis at_team = r;
   refit(at_team);
   const double z = teamHeight(r.team);
-  // Each unfilled slot read once: the color there, if enough is in view.
+  // Each slot read once, its blob's too: the four dots compared under the
+  // light they share, by the same reading.
   ColorVec dot[4];
   bool read[4] = {false, false, false, false};
   int n_read = 0;
   for (int s = 1; s < kPatternSlots; ++s) {
-    if (r.seen_sides >> (s - 1) & 1) continue;
     const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
     const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
     if (seen.share < opt.min_probe_share) continue;
@@ -204,23 +210,27 @@ void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, con
     read[s - 1] = true;
     ++n_read;
   }
-  if (r.seen_sides == 0 && n_read == 4) {
-    // No side peak at all: its four dots, read under the light they share,
-    // split by themselves where they are of two colors (the redder is
-    // pink, whatever the cast); one color alone is judged as below.
+  if (n_read == 4) {
+    // All four dots in view: where they are of two colors they split by
+    // themselves (the redder is pink, whatever the cast; a pale pink that
+    // clipped toward white lies clearly nearer to neither frame class),
+    // taken where the sides seen as blobs keep their colors.
     const ColorVec prior[2] = {green, pink};
     const ColorVec ext[1] = {blobs[r.blob[0]].color};
     uint8_t lab[4];
     TwoMeansResult res = twoMeans(dot, 4, prior, ext, 1, lab);
     dv::orderByRatio(res, lab, 4, 0, 1, nullptr);
-    if (res.separated) {
+    bool agrees = res.separated;
+    for (int s = 0; s < 4 && agrees; ++s)
+      if (r.seen_sides >> s & 1) agrees = colors[s] == (lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink);
+    if (agrees) {
       for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
       r.seen_sides = 0xF;
       return;
     }
   }
   for (int s = 0; s < 4; ++s) {
-    if (!read[s]) continue;
+    if (!read[s] || (r.seen_sides >> s & 1)) continue;
     const int label = weakSideColor(dot[s], green, pink, static_cast<float>(opt.weak_color_margin));
     if (label < 0) continue;
     colors[s] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;

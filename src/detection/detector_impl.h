@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "detection/ball_color.h"
 #include "detection/ball_tracker.h"
 #include "detection/blob_index.h"
 #include "detection/border_balls.h"
@@ -29,8 +30,7 @@
 namespace dv {
 namespace detector_detail {
 
-// Color classes, in the order of DetectorOptions' references.
-enum ColorClassId { kYellow = 0, kBlue, kGreen, kPink, kOrange, kField, kWhite, kNumClasses };
+using namespace color_class;  // the class ids (ball_color.h)
 
 constexpr int kMaxNeighbors = 10;       // side blob candidates per center
 constexpr int kMaxSlotCandidates = 3;   // blobs per predicted slot (tracking)
@@ -67,12 +67,6 @@ constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
 constexpr float kOverCarpet = 1.25f;
 constexpr double kCarpetProbeDistance = 115;
 constexpr double kEdgeBlobRadius = RobotPatternGeometry::kSideBlobRadius;
-// A class reaches kClassSpreads times the spread of its samples in this
-// frame, at least kMinClassRadius (color_classes.h).
-constexpr float kClassSpreads = 3.f;
-// A ball of an unexpected shade is at least this share as saturated as the
-// frame's yellow (line and carpet mixes are far less).
-constexpr float kBallSaturationShare = 0.5f;
 // Streak score at which a fast-ball candidate counts at full strength.
 constexpr double kStreakFullStrength = 0.6;
 
@@ -98,22 +92,6 @@ inline double slotAngle(int slot) {
   return std::atan2(o.y, o.x);
 }
 
-// Share of the object's color in a streak's mean color (chromaticity
-// weight, which favours the brighter ball over the carpet): a streak's color
-// disc lies where the ball covered the cells for at least half the exposure.
-constexpr float kStreakMinShare = 0.5f;
-constexpr int kStreakShareSteps = 6;
-
-// Distance from a streak's color to the mix of `field` and `object` with the
-// object's share between kStreakMinShare and 1.
-inline float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object) {
-  float best = std::numeric_limits<float>::max();
-  for (int i = 0; i < kStreakShareSteps; ++i) {
-    const float a = kStreakMinShare + (1.f - kStreakMinShare) * i / (kStreakShareSteps - 1);
-    best = std::min(best, seen.distance(colorMix(field, 1.f - a, object, a, object, 0.f)));
-  }
-  return best;
-}
 inline double dist(const FieldMm& a, const FieldMm& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 }  // namespace detector_detail
@@ -133,6 +111,7 @@ struct Detector::Impl {
   bool frame_seen[kNumClasses];       // class had samples in this frame
   float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
   NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
+  float yellow_hue_min = 0;           // of this frame's yellow centers (classifyRobots)
   float min_saturation = 0;
   DetectionHealth health;             // of the last frame
   ColorMap color_map;                 // references -> this camera's colors
@@ -362,17 +341,8 @@ struct Detector::Impl {
 
   // --------------------------------------------------------------- balls
   void findBalls(double t, bool tracking, Detections& out);
-  // Whether a color is the ball's in this frame, and how clearly
-  // (detector_balls.cpp): for blobs and the border's samples alike.
-  class BallColorJudge;
-  // For a blob of mean color rgb (seen: the same, clipping considered):
-  // 0 unless yellow robots were seen, it is at least min_brightness
-  // (r + g + b) bright, about as saturated as the yellow class
-  // (kBallSaturationShare) and its hue lies between this frame's pink and
-  // yellow (through red, under the lines' white); else its distance to
-  // the nearest of the yellow, pink, white and field classes in units of
-  // that class's reach (above 1: none explains it).
-  float explainedByNone(const float rgb[3], const ClippedColor& seen, float min_brightness) const;
+  // This frame's colors for the ball's color judge (ball_color.h).
+  FrameColors ball_colors;
 
   std::vector<FieldMm> raw_positions;
   double plane_height = 150;

@@ -1,0 +1,91 @@
+#pragma once
+// Whether a color is the ball's in one frame, and how clearly: for blobs,
+// streaks and the border's samples alike. No color is fixed: the ball is
+// what is nearer to the orange class than to every other class this frame
+// learned (a clipped channel counts as the color it may have had: an
+// overexposed ball looks yellowish), or what none of this frame's classes
+// explains (a ball of another shade than expected: explainedByNone). A
+// streak is the ball's color mixed with the carpet it crossed: it is
+// compared with each class's mixing line from the field color.
+#include <optional>
+
+#include "detection/border_balls.h"
+#include "detection/clipped_color.h"
+#include "detection/color_classes.h"
+#include "pipeline/blob.h"
+
+namespace dv {
+namespace color_class {
+// Color classes, in the order of DetectorOptions' references.
+enum Id { kYellow = 0, kBlue, kGreen, kPink, kOrange, kField, kWhite, kNumClasses };
+}  // namespace color_class
+
+// A class reaches kClassSpreads times the spread of its samples in this
+// frame, at least kMinClassRadius (color_classes.h).
+constexpr float kClassSpreads = 3.f;
+// A ball of an unexpected shade is at least this share as saturated as the
+// frame's yellow, both under the lines' white (line and carpet mixes are
+// far less).
+constexpr float kBallSaturationShare = 0.5f;
+
+// One frame's colors as the detector learned them (chromaticity,
+// color_classes.h).
+struct FrameColors {
+  ColorVec color[color_class::kNumClasses];
+  float spread[color_class::kNumClasses] = {};  // rms distance of its samples (0: unknown)
+  bool seen[color_class::kNumClasses] = {};     // the class had samples in this frame
+  NeutralColor white;                           // the lines' RGB (pipeline/blob.h)
+  // Hue (colorHue under `white`) of the reddest yellow center.
+  float yellow_hue_min = 0;
+  // The orange reference as this camera shows colors (ColorMap), if known.
+  std::optional<ColorVec> mapped_orange;
+};
+
+class BallColorJudge final : public BallColorTest {
+ public:
+  // min_brightness: r + g + b below which no class-less color is a ball
+  // (darker peaks lie on robot tops).
+  BallColorJudge(const FrameColors& frame, float min_brightness);
+
+  // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
+  // nearest of the other classes.
+  double confidence(const float rgb[3], bool streak, int* nearest = nullptr) const;
+  // As confidence() > 0, with the carpet (most of what the border's probes
+  // see) ruled out first: a color nearer to the field than to orange and
+  // within the field class's reach is neither nearer to orange nor
+  // unexplained.
+  bool isBall(const float rgb[3]) const override;
+  bool isCarpet(const float rgb[3]) const override;
+
+  // 0 unless yellow was seen, the color is at least min_brightness bright,
+  // at least kBallSaturationShare as saturated as the yellow class and its
+  // hue lies between this frame's pink and yellow (through red); else its
+  // distance to the nearest of the yellow, pink, white and field classes in
+  // units of that class's reach (above 1: none explains it). Yellow does
+  // not explain a color redder than its reddest center by more than the
+  // hue a color's noise (kMinClassRadius) spans at its distance from the
+  // white: clipping and vignetting spread the yellow centers along a
+  // curve, so a reach around their mean would also cover the redder ball.
+  float explainedByNone(const float rgb[3]) const;
+
+ private:
+  float distanceToOrange(const ClippedColor& seen, bool streak) const;
+  bool withinFieldReach(const ClippedColor& seen) const;
+  float saturation(const float rgb[3]) const;  // under the lines' white
+
+  const FrameColors& f_;
+  float min_brightness_;
+  float white_[3] = {1, 1, 1};
+};
+
+// Share of the object's color in a streak's mean color (chromaticity
+// weight, which favours the brighter ball over the carpet): a streak's color
+// disc lies where the ball covered the cells for at least half the exposure.
+constexpr float kStreakMinShare = 0.5f;
+constexpr int kStreakShareSteps = 6;
+
+// Distance from a streak's color to the mix of `field` and `object` with the
+// object's share between kStreakMinShare and 1.
+float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object);
+
+}  // namespace dv
