@@ -50,7 +50,7 @@ std::vector<Placement> placements(const SceneSpec& spec) {
   } edges[] = {{"left", 0, 0.4 * h, 1, 0}, {"right", w - 1, 0.6 * h, -1, 0}, {"top", 0.35 * w, 0, 0, 1},
                {"bottom", 0.65 * w, h - 1, 0, -1}};
   for (const auto& e : edges)
-    for (double k : {0.0, 0.25, 0.5, 1.5}) {
+    for (double k : {0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0}) {
       const auto p = cam.imageToField({e.u + e.du * k * r_px, e.v + e.dv * k * r_px}, r);
       if (!p || std::abs(p->x) > half_x || std::abs(p->y) > half_y) continue;
       char name[64];

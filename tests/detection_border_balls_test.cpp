@@ -1,8 +1,8 @@
 // Balls cut by the image border (detection/border_balls.h) on drawn frames:
 // a disc of the ball's image radius, its rim anti-aliased, on a plain
 // carpet, judged by a plain color test. Half or more of it in view: found,
-// its center where it was drawn; a colored band along the edge or a ball
-// wholly in view: no border ball.
+// its center where it was drawn; a whole ball near the edge: found whole;
+// a colored band along the edge: no border ball.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,17 +80,30 @@ TEST(BorderBalls, HalfOrMoreInViewIsFoundWhereItLies) {
   }
 }
 
-TEST(BorderBalls, BandsAndWholeBallsAreNot) {
+TEST(BorderBalls, BandsAreNoBalls) {
   Drawn d = topDown();
-  // A red band along the top edge, a ball-deep stripe on the right edge as
-  // long as three balls, and a ball 1.3 radii inside the left edge.
+  // A red band along the top edge and a ball-deep stripe on the right edge
+  // as long as three balls.
   const double r = d.r_px;
   paint(d.image, [&](double u, double v) {
-    return (v < 0.6 * r && u > 100 && u < 500) || (u > 639.5 - r && v > 100 && v < 100 + 6 * r) ||
-           std::hypot(u - (-0.5 + 1.3 * r), v - 300) <= r;
+    return (v < 0.6 * r && u > 100 && u < 500) || (u > 639.5 - r && v > 100 && v < 100 + 6 * r);
   });
   const auto found = findIn(d);
   for (const BorderBall& b : found) ADD_FAILURE() << "a ball at " << b.center.u << ", " << b.center.v;
+}
+
+// A whole ball too near the edge for the blob score's windows (they reach
+// about three radii beyond it) is found whole, once, where it lies.
+TEST(BorderBalls, WholeBallsNearTheEdgeAreFoundWhole) {
+  for (double k : {1.2, 1.5, 2.0, 3.0, 3.9}) {
+    Drawn d = topDown();
+    const ImagePx c{-0.5 + k * d.r_px, 300};
+    paint(d.image, [&](double u, double v) { return std::hypot(u - c.u, v - c.v) <= d.r_px; });
+    const auto balls = findIn(d);
+    ASSERT_EQ(balls.size(), 1u) << k << " radii in";
+    EXPECT_TRUE(balls[0].whole) << k << " radii in";
+    EXPECT_LT(std::hypot(balls[0].center.u - c.u, balls[0].center.v - c.v), 0.5) << k << " radii in";
+  }
 }
 
 }  // namespace

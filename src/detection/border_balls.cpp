@@ -8,19 +8,24 @@
 namespace dv {
 namespace {
 
-// Probes lie this many ball radii inside the edge and apart along it: a
-// ball with its center anywhere from the edge to a radius inside covers
-// the nearest probe's sample point, at most 0.64 radii from its center.
+// Probes lie this many ball radii inside the edge and apart along it, in
+// kProbeRows rows a radius apart: a ball with its center anywhere from the
+// edge to four radii inside covers the nearest probe's sample point, at
+// most 0.64 radii from its center. (The blob score's windows reach about
+// three radii beyond a ball: a whole ball three radii from the side
+// view's edge made no blob in any search.)
 constexpr double kProbeInset = 0.5, kProbeStep = 0.8;
+constexpr int kProbeRows = 4;
 // A run of more probes than a ball's chord can cover (2 radii: 3 probes,
 // one more for blur) is no ball.
 constexpr int kMaxRunProbes = 4;
 // The window: this many radii beyond the run's probes along the edge, and
-// kWindowDepth radii deep (a cut ball's far rim is under 2 radii in).
-constexpr double kWindowSides = 1.5, kWindowDepth = 3;
+// as deep as the far rim of a ball covering the row's probes (two radii
+// beyond them) and a sample more.
+constexpr double kWindowSides = 1.5;
 // Lattice spacing in radii (at least kMinStep px).
 constexpr double kStepRadii = 0.2, kMinStep = 0.5;
-// A ball whose samples fill this share of its disc is whole: the blob path's.
+// A ball whose samples fill this share of its disc is whole.
 constexpr double kWholeShare = 0.97;
 
 // Area of the part of a disc of radius r inside the half plane s >= 0, its
@@ -58,22 +63,22 @@ BorderBallFinder::BorderBallFinder(const CameraModel& camera, const FieldRect& a
   width_ = camera.calibration().image_width;
   height_ = camera.calibration().image_height;
   if (width_ <= 0 || height_ <= 0) return;
-  for (int e = 0; e < 4; ++e) {
-    const double len = edgeLength(e);
-    double t = 0;
-    while (t <= len) {
-      double step = 2;  // px, where no ball lies
-      if (const auto p = camera.imageToField(edgePoint(e, t, 0), ball_radius);
-          p && area.contains({p->x, p->y})) {
-        const double r = ballRadiusPx(camera, *p, ball_radius);
-        if (r >= 1) {
-          probes_.push_back({e, t, r, edgePoint(e, t, kProbeInset * r)});
-          step = std::max(1.0, kProbeStep * r);
+  for (int e = 0; e < 4; ++e)
+    for (int row = 0; row < kProbeRows; ++row) {
+      const double len = edgeLength(e);
+      double t = 0;
+      while (t <= len) {
+        double step = 2;  // px, where no ball lies
+        if (const auto p = camera.imageToField(edgePoint(e, t, 0), ball_radius); p && area.contains({p->x, p->y})) {
+          const double r = ballRadiusPx(camera, *p, ball_radius);
+          if (r >= 1) {
+            probes_.push_back({e, t, r, row, edgePoint(e, t, (kProbeInset + row) * r)});
+            step = std::max(1.0, kProbeStep * r);
+          }
         }
+        t += step;
       }
-      t += step;
     }
-  }
   hit_.resize(probes_.size());
   samples_.reserve(4096);
 }
@@ -99,15 +104,23 @@ void BorderBallFinder::find(const FrameView& frame, const BallColorTest& test, s
     hit_[i] = test.isBall(rgb);
   }
   const int n = static_cast<int>(probes_.size());
+  const size_t first = out.size();
   for (int i = 0; i < n;) {
     if (!hit_[i]) {
       ++i;
       continue;
     }
     int j = i;
-    while (j + 1 < n && hit_[j + 1] && probes_[j + 1].edge == probes_[i].edge) ++j;
+    while (j + 1 < n && hit_[j + 1] && probes_[j + 1].edge == probes_[i].edge && probes_[j + 1].row == probes_[i].row)
+      ++j;
     BorderBall b;
-    if (j - i + 1 <= kMaxRunProbes && fit(frame, test, i, j, b)) out.push_back(b);
+    // A ball two rows see is one ball.
+    auto seen = [&] {
+      for (size_t k = first; k < out.size(); ++k)
+        if (std::hypot(out[k].center.u - b.center.u, out[k].center.v - b.center.v) < probes_[i].radius) return true;
+      return false;
+    };
+    if (j - i + 1 <= kMaxRunProbes && fit(frame, test, i, j, b) && !seen()) out.push_back(b);
     i = j + 1;
   }
 }
@@ -124,10 +137,11 @@ bool BorderBallFinder::fit(const FrameView& frame, const BallColorTest& test, in
   // A window across a corner would need the other edge's cut as well.
   if (t0 < 0 || t1 > edgeLength(edge)) return false;
   const double h = std::max(kMinStep, kStepRadii * r);
-  const int nt = static_cast<int>(std::ceil((t1 - t0) / h)), ns = static_cast<int>(std::ceil(kWindowDepth * r / h));
-  // The ball-colored samples: their area, centroid along the edge, color.
+  const double depth = (kProbeInset + a.row + 2) * r + h;
+  const int nt = static_cast<int>(std::ceil((t1 - t0) / h)), ns = static_cast<int>(std::ceil(depth / h));
+  // The ball-colored samples: their area, centroid, color.
   samples_.clear();
-  double sum_t = 0, sum_rgb[3] = {0, 0, 0}, deepest = 0;
+  double sum_t = 0, sum_s = 0, sum_rgb[3] = {0, 0, 0};
   int at_edge = 0;  // ball-colored samples in the row along the edge
   for (int j = 0; j < ns; ++j) {
     const double s = (j + 0.5) * h;
@@ -137,35 +151,44 @@ bool BorderBallFinder::fit(const FrameView& frame, const BallColorTest& test, in
       Sample smp{t, s, {0, 0, 0}};
       frameRgbAt(frame, px.u, px.v, smp.rgb);
       if (!test.isBall(smp.rgb)) continue;
-      // A cut ball's far rim lies under two radii in (blur: a sample more).
-      if (s > 2 * r + 1.5 * h) return false;
+      // Ball color in the window's last row: something larger than a ball.
+      if (j == ns - 1) return false;
       if (samples_.size() == samples_.capacity()) return false;  // no allocation
       samples_.push_back(smp);
-      deepest = std::max(deepest, s);
       at_edge += j == 0;
       sum_t += t;
+      sum_s += s;
       for (int c = 0; c < 3; ++c) sum_rgb[c] += smp.rgb[c];
     }
   }
-  // The ball must be cut by the edge: colored right at it.
-  if (samples_.empty() || at_edge == 0) return false;
+  if (samples_.empty()) return false;
   const double area = samples_.size() * h * h;
   const double full = kPi * r * r;
-  if (area >= kWholeShare * full || area < 0.5 * kMinBorderVisible * full) return false;
+  if (area < 0.5 * kMinBorderVisible * full) return false;
   const double tc = sum_t / samples_.size();
-  // Depth of the center from the area (segmentArea rises with d).
-  double lo = -r, hi = r;
-  for (int k = 0; k < 40; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (segmentArea(r, mid) < area ? lo : hi) = mid;
+  // Cut by the edge (colored right at it, short of a whole disc): the
+  // center's depth from the area (segmentArea rises with d). Else whole:
+  // the centroid, its disc in the image.
+  const bool cut = at_edge > 0 && area < kWholeShare * full;
+  double d = sum_s / samples_.size();
+  if (cut) {
+    double lo = -r, hi = r;
+    for (int k = 0; k < 40; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (segmentArea(r, mid) < area ? lo : hi) = mid;
+    }
+    d = 0.5 * (lo + hi);
+  } else if (d < r - 1.5 * h) {
+    return false;  // as much as a whole ball, yet reaching beyond the edge
   }
-  const double d = 0.5 * (lo + hi);
   // The fitted disc must reach as deep as the samples do: a whole ball
-  // near the edge, short of area only by blur and the lattice, does not.
-  if (deepest > d + r + 1.5 * h) return false;
-  const double visible = segmentArea(r, d) / full;
+  // near the edge, short of area only by blur and the lattice, is not cut.
+  for (const Sample& smp : samples_)
+    if (smp.s > d + r + 1.5 * h) return false;
+  const double visible = cut ? segmentArea(r, d) / full : 1.0;
   if (visible < kMinBorderVisible) return false;
-  // Overlap of the samples with the fitted segment, counted on the lattice.
+  // Overlap of the samples with the fitted disc (in the image), counted on
+  // the lattice.
   int inter = 0;
   for (const Sample& smp : samples_) inter += (smp.t - tc) * (smp.t - tc) + (smp.s - d) * (smp.s - d) <= r * r;
   int in_disc = 0;
@@ -185,6 +208,7 @@ bool BorderBallFinder::fit(const FrameView& frame, const BallColorTest& test, in
   for (int c = 0; c < 3; ++c) ball.rgb[c] = static_cast<float>(sum_rgb[c] / samples_.size());
   ball.overlap = overlap;
   ball.visible = visible;
+  ball.whole = !cut;
   return true;
 }
 

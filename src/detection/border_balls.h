@@ -1,27 +1,30 @@
 #pragma once
-// A ball cut by the image border. The pixel stage's blob score needs a
-// side blob's whole disc in view (score_windows.h: cells beyond the image
-// repeat the border samples, whose gradient is zero, so the quadrants
-// outside score nothing), and a ball with half of it in the image never
-// peaks, in any backend or search. It is looked for here, in the frame
-// itself along the image border, so every backend and search gets the same
-// answer:
-//  - probes: image points half a ball radius inside each edge, 0.8 ball
-//    radii apart, where a ball there would lie within the walls (made
-//    once per camera);
+// A ball at the image border: cut by it, or whole but so near it that the
+// pixel stage's blob score cannot see it. That score needs a side blob's
+// whole disc and its surround in view (score_windows.h: cells beyond the
+// image repeat the border samples, whose gradient is zero, so the quadrants
+// outside score nothing), so a ball with half of it in the image never
+// peaks in any backend or search, and a whole ball within about three of
+// its radii of the edge peaks in some searches and not in others (the
+// coarse search's windows are twice as wide). It is looked for here, in
+// the frame itself along the image border, so every backend and search
+// gets the same answer:
+//  - probes: image points in rows half a ball radius, then 1.5, 2.5 and
+//    3.5 radii inside each edge, 0.8 ball radii apart along it, where a
+//    ball there would lie within the walls (made once per camera);
 //  - where a probe's color passes the caller's ball test, a window on the
-//    edge around the run of such probes is sampled on a fine lattice and
-//    each sample judged by the same test;
+//    edge around the run of such probes (one row) is sampled on a fine
+//    lattice and each sample judged by the same test;
 //  - the ball's image is a disc of known radius (the ball's radius as the
-//    camera sees it there) cut by a straight edge: its center along the
-//    edge is the centroid of the ball-colored samples, its depth follows
-//    from their area (a circular segment's area), so no threshold of the
-//    fit is tuned to a scene;
-//  - the fit must explain the samples (their overlap with the fitted
-//    segment, intersection over union, at least kMinBorderOverlap) and
-//    the ball must be cut (not whole in the window, not longer than a
-//    ball along the edge), so a colored edge, a line or a marker's rim is
-//    no ball, and a ball wholly in view is left to the blob path.
+//    camera sees it there). Cut by the edge: its center along the edge is
+//    the centroid of the ball-colored samples, its depth follows from their
+//    area (a circular segment's area). Whole: its center is their
+//    centroid. No threshold of the fit is tuned to a scene;
+//  - the fit must explain the samples (their overlap with the fitted disc
+//    or segment, intersection over union, at least kMinBorderOverlap) and
+//    a cut ball not be longer than a ball along the edge, so a colored
+//    edge, a line or a marker's rim is no ball.
+// The detector takes a whole ball from here only where no blob is one.
 // No allocation per frame after the first.
 #include <cstdint>
 #include <vector>
@@ -56,13 +59,14 @@ struct BorderBall {
   float rgb[3] = {0, 0, 0};  // mean color of its ball-colored samples
   double overlap = 0;   // of the samples and the fitted segment
   double visible = 0;   // share of the disc inside the image
+  bool whole = false;   // the whole disc is in the image
 };
 
 class BorderBallFinder {
  public:
   BorderBallFinder(const CameraModel& camera, const FieldRect& ball_area, double ball_radius);
 
-  // The balls cut by the image border in `frame`, appended to `out`.
+  // The balls at the image border in `frame`, appended to `out`.
   void find(const FrameView& frame, const BallColorTest& test, std::vector<BorderBall>& out);
 
   int probes() const { return static_cast<int>(probes_.size()); }
@@ -73,12 +77,14 @@ class BorderBallFinder {
     int edge = 0;     // 0 left, 1 right, 2 top, 3 bottom
     double t = 0;     // px along the edge
     double radius = 0;  // the ball's radius in px there
-    ImagePx at;       // the sample point, half a radius inside
+    int row = 0;      // the sample point lies kProbeInset + row radii inside
+    ImagePx at;
   };
   // Image point at `t` along edge `e`, `s` px inside the image.
   ImagePx edgePoint(int edge, double t, double s) const;
   double edgeLength(int edge) const;
-  // Fits one run of probes [first, last] (same edge); true with a ball.
+  // Fits one run of probes [first, last] (same edge and row); true with a
+  // ball.
   bool fit(const FrameView& frame, const BallColorTest& test, int first, int last, BorderBall& ball);
 
   CameraModel camera_;

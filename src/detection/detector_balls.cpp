@@ -113,6 +113,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.pos = {bb.position.x, bb.position.y};
     const double color_conf = judge.confidence(bb.rgb, false);
     if (color_conf <= 0 || insideRobot(c.pos)) continue;
+    // A whole ball the blob path found too is the blob's.
+    auto blobNear = [&] {
+      for (const BallCandidate& o : ball_cands)
+        if (o.border < 0 && !o.streak && dist(o.pos, c.pos) < 4 * opt.ball_radius) return true;
+      return false;
+    };
+    if (bb.whole && blobNear()) continue;
     c.confidence = color_conf * std::min(1.0, bb.overlap / kBorderFullOverlap) * temporalOf(c);
     c.rank = c.confidence;
     if (c.confidence < opt.min_ball_confidence) continue;
@@ -167,14 +174,20 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   for (const auto& c : ball_cands) {
     BallDetection d;
     d.confidence = static_cast<float>(std::clamp(c.confidence, 0.0, 1.0));
-    if (c.border >= 0) {
-      d.position = border_balls[c.border].position;
-      d.pixel = border_balls[c.border].center;
+    const BorderBall* bb = c.border >= 0 ? &border_balls[c.border] : nullptr;
+    if (bb && !bb->whole) {
+      d.position = bb->position;
+      d.pixel = bb->center;
       out.balls.push_back(d);
       continue;
     }
-    const FieldMm at_plane = raw_positions[c.blob];
-    auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    std::optional<ImagePx> px;
+    if (bb) {
+      px = bb->center;
+    } else {
+      const FieldMm at_plane = raw_positions[c.blob];
+      px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    }
     // The ball's center from its silhouette (ball_silhouette.h). A far
     // ball seen from the side often peaks only as a streak; a real streak's
     // blur is no whole ball's silhouette and keeps its middle.
