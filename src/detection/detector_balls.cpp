@@ -1,3 +1,4 @@
+#include "detection/ball_policy.h"
 #include "detection/ball_silhouette.h"
 #include "detection/detector_impl.h"
 
@@ -116,7 +117,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // A whole ball the blob path found too is the blob's.
     auto blobNear = [&] {
       for (const BallCandidate& o : ball_cands)
-        if (o.border < 0 && !o.streak && dist(o.pos, c.pos) < 4 * opt.ball_radius) return true;
+        if (o.border < 0 && !o.streak && dist(o.pos, c.pos) < kSameBallRadii * opt.ball_radius) return true;
       return false;
     };
     if (bb.whole && blobNear()) continue;
@@ -126,34 +127,12 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
                                     [&](const BallCandidate& o) {
                                       return o.border < 0 && !o.streak &&
-                                             dist(o.pos, c.pos) < 4 * opt.ball_radius;
+                                             dist(o.pos, c.pos) < kSameBallRadii * opt.ball_radius;
                                     }),
                      ball_cands.end());
     ball_cands.push_back(c);
   }
-  std::sort(ball_cands.begin(), ball_cands.end(),
-            [](const BallCandidate& a, const BallCandidate& b) {
-              return a.confidence != b.confidence ? a.confidence > b.confidence : a.rank > b.rank;
-            });
-  // One ball per place: weaker candidates within a ball diameter go.
-  int kept = 0;
-  for (size_t i = 0; i < ball_cands.size(); ++i) {
-    bool dup = false;
-    for (int j = 0; j < kept && !dup; ++j)
-      dup = dist(ball_cands[i].pos, ball_cands[j].pos) < 4 * opt.ball_radius;
-    if (!dup && kept < opt.max_balls) ball_cands[kept++] = ball_cands[i];
-  }
-  ball_cands.resize(kept);
-  // A streak is trusted where it continues a ball track (on its course or
-  // kicked from a robot) or where nothing else in the frame is a ball: a
-  // colored region that stands out is weaker evidence than a round blob.
-  bool round_ball = false;
-  for (const auto& c : ball_cands) round_ball |= !c.streak;
-  if (round_ball) {
-    ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
-                                    [&](const BallCandidate& c) { return c.streak && c.track < 0; }),
-                     ball_cands.end());
-  }
+  selectBalls(ball_cands, opt.ball_radius, opt.max_balls);
 
   // Learn orange from a convincing ball, the field from the clutter.
   const float fp = static_cast<float>(opt.retention_force);

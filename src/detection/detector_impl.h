@@ -4,7 +4,8 @@
 // detector_hypotheses.cpp (patterns of blobs -> robot hypotheses),
 // detector_identities.cpp (color classes -> team and id), detector_tracks.cpp
 // (robot tracks and identity hysteresis), detector_balls.cpp (the ball
-// policy). Private to those files.
+// candidates, judged by ball_color.h and selected by ball_policy.h).
+// Private to those files.
 #include "detection/detector.h"
 
 #include <algorithm>
