@@ -29,14 +29,16 @@ float BallColorJudge::saturation(const float rgb[3]) const {
   return hi > 0 ? (hi - lo) / hi : 0.f;
 }
 
-float BallColorJudge::explainedByNone(const float rgb[3]) const {
+float BallColorJudge::explainedByNone(const float rgb[3]) const { return explainedByNone(ClippedColor(rgb)); }
+
+float BallColorJudge::explainedByNone(const ClippedColor& seen) const {
+  const float* rgb = seen.rgb();
   if (!f_.seen[kYellow] || rgb[0] + rgb[1] + rgb[2] < min_brightness_) return 0;
   if (saturation(rgb) < kBallSaturationShare * saturation(f_.color[kYellow].c)) return 0;
   const float h = colorHue(rgb, white_);
   const float yellow = colorHue(f_.color[kYellow].c, white_);
   const float pink = std::min(0.f, colorHue(f_.color[kPink].c, white_));
   if (!(h > pink && h < yellow)) return 0;
-  const ClippedColor seen(rgb);
   const float hue_noise = std::atan2(kMinClassRadius, seen.distance(f_.color[kWhite]));
   const bool redder_than_yellow = f_.white.valid && h < f_.yellow_hue_min - hue_noise;
   float rel = std::numeric_limits<float>::max();
@@ -58,7 +60,10 @@ float BallColorJudge::distanceToOrange(const ClippedColor& seen, bool streak) co
 }
 
 double BallColorJudge::confidence(const float rgb[3], bool streak, int* nearest) const {
-  const ClippedColor seen(rgb);
+  return confidence(ClippedColor(rgb), streak, nearest);
+}
+
+double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* nearest) const {
   if (seen.saturated()) return 0;
   const float d_or = distanceToOrange(seen, streak);
   float d_neg = std::numeric_limits<float>::max();
@@ -69,7 +74,7 @@ double BallColorJudge::confidence(const float rgb[3], bool streak, int* nearest)
     if (dk < d_neg) d_neg = dk, nearest_neg = k;
   }
   if (nearest) *nearest = nearest_neg;
-  const float unexplained = streak ? 0.f : explainedByNone(rgb);
+  const float unexplained = streak ? 0.f : explainedByNone(seen);
   if (d_or >= d_neg && unexplained <= 1) return 0;
   const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
   return std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
@@ -84,7 +89,7 @@ bool BallColorJudge::isBall(const float rgb[3]) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
   if (withinFieldReach(seen) && seen.distance(f_.color[kField]) <= distanceToOrange(seen, false)) return false;
-  return confidence(rgb, false) > 0;
+  return confidence(seen, false, nullptr) > 0;
 }
 
 bool BallColorJudge::isCarpet(const float rgb[3]) const {

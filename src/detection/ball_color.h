@@ -50,6 +50,7 @@ class BallColorJudge final : public BallColorTest {
   // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
   // nearest of the other classes.
   double confidence(const float rgb[3], bool streak, int* nearest = nullptr) const;
+  double confidence(const ClippedColor& seen, bool streak, int* nearest = nullptr) const;
   // As confidence() > 0, with the carpet (most of what the border's probes
   // see) ruled out first: a color nearer to the field than to orange and
   // within the field class's reach is neither nearer to orange nor
@@ -69,6 +70,7 @@ class BallColorJudge final : public BallColorTest {
   float explainedByNone(const float rgb[3]) const;
 
  private:
+  float explainedByNone(const ClippedColor& seen) const;
   float distanceToOrange(const ClippedColor& seen, bool streak) const;
   bool withinFieldReach(const ClippedColor& seen) const;
   float saturation(const float rgb[3]) const;  // under the lines' white

@@ -19,6 +19,7 @@ class ClippedColor {
  public:
   static constexpr float kMaxClipGain = 3.f;
   explicit ClippedColor(const float rgb[3]);
+  const float* rgb() const { return rgb_; }  // as seen
   bool clipped() const { return n_clipped_ > 0; }
   // Two or three channels clipped: with two free channels nearly any hue
   // fits (a clipped yellow reaches orange), so the color says too little.

@@ -77,9 +77,10 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
         p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
       continue;
-    if (ClippedColor(b.rgb).saturated()) continue;
+    const ClippedColor seen(b.rgb);
+    if (seen.saturated()) continue;
     int nearest_neg = kField;
-    const double color_conf = judge.confidence(b.rgb, b.streak, &nearest_neg);
+    const double color_conf = judge.confidence(seen, b.streak, &nearest_neg);
     if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
