@@ -26,6 +26,15 @@ void cast(SceneSpec& s, Rgb white_balance, double saturation = 1, double gamma =
 
 const Rgb kTungsten{1.6, 1.0, 0.6}, kColdLed{0.7, 1.0, 1.7};
 
+// A green cast with teal and light rose markers, dark and noisy.
+void greenCastTealRose(SceneSpec& s, int) {
+  cast(s, {0.8, 1.3, 0.8}, 0.7);
+  s.materials.green = {20, 175, 150};
+  s.materials.pink = {250, 175, 205};
+  s.lighting.exposure = 0.6;
+  s.noise_sigma = 3.0;
+}
+
 const std::vector<Condition>& conditions() {
   static const std::vector<Condition> list = {
       // --- casts: the white balance on its warm-cold and green-magenta axes
@@ -142,6 +151,11 @@ const std::vector<Condition>& conditions() {
          s.materials.yellow = {245, 245, 80};
          s.materials.ball = {255, 165, 60};
        }},
+      // Pale rose dots that made no peak were judged against the retained
+      // pink, in a frame alone the fixed reference, which vetoed them: a
+      // second search with the frame's own colors finds the robot
+      // (searchAgainWithFrameColors). Recall 0.989 -> 1.000 at 2448 x 2048.
+      {"green_cast_teal_rose_dark_noisy", greenCastTealRose},
       // --- ball shades
       {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
       {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},
@@ -150,6 +164,21 @@ const std::vector<Condition>& conditions() {
 }
 
 class SceneColorSweep : public ::testing::TestWithParam<size_t> {};
+
+// The placement of green_cast_teal_rose_dark_noisy at 2448 x 2048 where a
+// robot showed its center, a teal and a pale rose blob, its other two rose
+// dots no peak: the first search judged them against the reference pink
+// (neither green nor pink), the second against the frame's learned pink.
+// Recall 0.955 without the second search.
+TEST(SceneColorSweepPaleRose, UnpeakedMarkersJudgedByTheFramesOwnColors) {
+  const Condition c{"green_cast_teal_rose_dark_noisy", greenCastTealRose};
+  SceneScore s;
+  score(conditionScene(c, 1, false), 1, true, s);
+  printRow(c.name, "2448x2048", s);
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+}
 
 // The same bars as scene_sweep_test.cpp (sweepCondition).
 TEST_P(SceneColorSweep, BothTeamsEveryIdAndTheBallUnderAnyColors) { sweepCondition(conditions()[GetParam()]); }
@@ -190,13 +219,6 @@ const std::vector<Condition>& openConditions() {
          cast(s, kTungsten, 0.8);
          s.lighting.exposure = 1.5;
          s.lighting.uneven_ratio = 3.0;
-       }},
-      {"green_cast_teal_rose_dark_noisy", [](SceneSpec& s, int) {
-         cast(s, {0.8, 1.3, 0.8}, 0.7);
-         s.materials.green = {20, 175, 150};
-         s.materials.pink = {250, 175, 205};
-         s.lighting.exposure = 0.6;
-         s.noise_sigma = 3.0;
        }},
   };
   return list;

@@ -193,7 +193,7 @@ class SceneSweep : public ::testing::TestWithParam<size_t> {};
 //    the blob threshold, and pale pink ones too; the detector takes them as
 //    weak peaks where a pattern of blobs predicts them (weak_sides.h), and
 //    a center with two side blobs where the frame shows markers at the
-//    other two slots (detector_hypotheses.cpp, completeFromTwoSides). Over
+//    other two slots (hypothesis_search.cpp, completeFromTwoSides). Over
 //    the 4 placements of DV_SCENE_FULL=1 the lowest recall is 0.989 (25°
 //    tilt; 0.852 before weak peaks, 0.909 before markers read from the
 //    frame), every other condition 1.000 at both sizes (pale colors 0.807

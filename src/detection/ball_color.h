@@ -15,11 +15,6 @@
 #include "pipeline/blob.h"
 
 namespace dv {
-namespace color_class {
-// Color classes, in the order of DetectorOptions' references.
-enum Id { kYellow = 0, kBlue, kGreen, kPink, kOrange, kField, kWhite, kNumClasses };
-}  // namespace color_class
-
 // A class reaches kClassSpreads times the spread of its samples in this
 // frame, at least kMinClassRadius (color_classes.h).
 constexpr float kClassSpreads = 3.f;

@@ -39,6 +39,13 @@ constexpr float kMaxOffMix = 0.35f;
 constexpr int kMinCarpetShare = 4;
 constexpr int kMaxSide = 2 * static_cast<int>((kCentroidRadii + kReachRadii) / kStepRadii) + 3;
 
+// Chromaticity without colorFeature's dark floor, which pulls a dark color
+// toward black: the shaded underside would weigh less than the lit cap.
+ColorVec pureChromaticity(const float rgb[3]) {
+  const float k = 300.f / std::max(rgb[0] + rgb[1] + rgb[2], 1.f);
+  return {{rgb[0] * k, rgb[1] * k, rgb[2] * k}};
+}
+
 // The ball's color test says yes or no, and a shaded rim (the ball's
 // underside, seen from the side, over its own shadow) says no where a lit
 // rim's samples of the same coverage say yes: the yes/no centroid leans
@@ -118,7 +125,7 @@ bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, d
       float rgb[3];
       frameRgbAt(frame, origin.u + x, origin.v + y, rgb);
       du[n] = static_cast<float>(x), dv[n] = static_cast<float>(y);
-      color[n] = colorFeature(rgb[0], rgb[1], rgb[2]);
+      color[n] = pureChromaticity(rgb);
       is_ball[n] = test.isBall(rgb);
       is_carpet[n] = !is_ball[n] && test.isCarpet(rgb);
       n_ball += is_ball[n];

@@ -14,6 +14,11 @@
 
 namespace dv {
 
+namespace color_class {
+// The detector's color classes, in the order of DetectorOptions' references.
+enum Id { kYellow = 0, kBlue, kGreen, kPink, kOrange, kField, kWhite, kNumClasses };
+}  // namespace color_class
+
 struct ColorVec {
   float c[3] = {0, 0, 0};
 };

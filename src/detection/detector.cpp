@@ -3,9 +3,8 @@
 namespace dv {
 
 Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const DetectorOptions& o)
-    : camera(cam), field(f), opt(o), cam_pos(cam.position()) {
+    : camera(cam), field(f), opt(o), cam_pos(cam.position()), search(cam) {
   ball_area = field.withBoundary();
-  stretched_view = seesStretchedField();
   setOptions(o);
   blobs.reserve(4096);
   hyps.reserve(1024);
@@ -25,6 +24,7 @@ void Detector::Impl::setOptions(const DetectorOptions& o) {
   tracker.setOptions(RobotTrackerOptions::from(o));
   ball_tracker.setOptions({field.withBoundary(), o.ball_radius, o.max_ball_speed, o.max_robot_speed});
   ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
+  search.setOptions(o, ref_height, ball_area);
   const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
                                        &opt.ref_pink,   &opt.ref_orange, &opt.ref_field,
                                        &opt.ref_white};
@@ -95,7 +95,9 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   raw_positions.clear();
   for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
   prepare(list);
-  findHypotheses();
+  ColorVec class_colors[kNumClasses];
+  for (int k = 0; k < kNumClasses; ++k) class_colors[k] = classes[k].color;
+  search.find(searchInputs(class_colors), hyps);
   // A hypothesis around a side blob taken for a center can hold a real
   // robot's blobs until its center is found implausible; the robots it
   // blocked get a second chance.
@@ -104,7 +106,9 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     selectRobots();
     dropImplausibleCenters();
   }
-  classifyRobots();
+  learnFrameColors();
+  searchAgainWithFrameColors();
+  identifyRobots();
   for (auto& r : robots) {
     if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
   }
@@ -148,6 +152,59 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   health.lines = neutral;
   last_t = t;
   have_frame = true;
+}
+
+bool Detector::Impl::overlapsAccepted(const PatternPose& pose, const Hypothesis* skip) const {
+  for (const auto& r : robots) {
+    if (&r == skip) continue;
+    if (robotTopsOverlap(pose.position, pose.orientation, r.pose.position, r.pose.orientation))
+      return true;
+  }
+  return false;
+}
+
+void Detector::Impl::selectRobots() {
+  robots.clear();
+  std::sort(hyps.begin(), hyps.end(),
+            [](const Hypothesis& a, const Hypothesis& b) { return a.rank > b.rank; });
+  for (auto& b : blobs) b.robot = -1;
+  for (const auto& h : hyps) {
+    if (blobs[h.blob[0]].implausible_center) continue;
+    bool free = true;
+    for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
+    if (!free || overlapsAccepted(h.pose)) continue;
+    for (int i = 0; i < h.n; ++i) blobs[h.blob[i]].robot = static_cast<int>(robots.size());
+    robots.push_back(h);
+    robots.back().confidence = h.rank;
+  }
+}
+
+int Detector::Impl::searchAgainWithFrameColors() {
+  bool learned = false;
+  for (bool seen : frame_seen) learned = learned || seen;
+  if (!learned) return 0;  // the same colors the first search had
+  const HypothesisInputs in = searchInputs(frame_color);
+  int added = 0;
+  for (int c = 0; c < n_strong; ++c) {
+    const FrameBlob& b = blobs[c];
+    if (!b.valid || b.streak || b.robot >= 0 || b.implausible_center) continue;
+    const ClippedColor seen(b.rgb);
+    const float d_team = std::min(seen.distance(frame_color[kYellow]), seen.distance(frame_color[kBlue]));
+    bool team_colored = true;
+    for (int k : {kGreen, kPink, kField, kWhite}) team_colored = team_colored && d_team < seen.distance(frame_color[k]);
+    if (!team_colored) continue;
+    Hypothesis h = search.bestAt(in, c);
+    if (h.rank <= 0 || overlapsAccepted(h.pose)) continue;
+    bool free = true;
+    for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
+    if (!free) continue;
+    h.team = nearestOf(b.color, kYellow, kBlue) == kYellow ? Team::Yellow : Team::Blue;
+    h.confidence = h.rank;
+    for (int i = 0; i < h.n; ++i) blobs[h.blob[i]].robot = static_cast<int>(robots.size());
+    robots.push_back(h);
+    ++added;
+  }
+  return added;
 }
 
 void validateDetectorOptions(const DetectorOptions& o, const CameraModel& camera) {

@@ -65,7 +65,7 @@ void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
   }
 }
 
-void Detector::Impl::classifyRobots() {
+void Detector::Impl::learnFrameColors() {
   for (int k = 0; k < kNumClasses; ++k)
     frame_color[k] = classes[k].color, frame_seen[k] = false, frame_spread[k] = 0;
   const int nr = static_cast<int>(robots.size());
@@ -108,7 +108,10 @@ void Detector::Impl::classifyRobots() {
     frame_color[kPink] = pink;
     if (res.count[1] == 0) pinkFromUnseenSlots();
   }
+}
 
+void Detector::Impl::identifyRobots() {
+  if (robots.empty()) return;
   // Per robot: its own side blobs, against its own center color; then its
   // weak sides by the nearer of its own two side colors (or the frame's
   // where it shows one only), when clearly nearer.
@@ -172,7 +175,7 @@ void Detector::Impl::pinkFromUnseenSlots() {
       const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, teamHeight(r.team)}, opt.probe_radius);
       // In view, and no darker than a marker may be (not the robot top).
       if (seen.share < opt.min_probe_share ||
-          seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * brightness(r.blob[0]))
+          seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * blobs[r.blob[0]].brightness())
         continue;
       samples.push_back(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]));
     }
