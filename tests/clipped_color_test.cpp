@@ -52,6 +52,25 @@ TEST(ClippedColor, TwoClippedChannelsGrowTogether) {
   EXPECT_FLOAT_EQ(ClippedColor(line).distance(yellow), colorDistance(feature(255, 255, 255), yellow));
 }
 
+// A sky-blue center in a sun patch under cold LED light: green and blue
+// clip, red does not. As seen it is nearer the lines' white than the
+// team's blue (its robot was dropped as a line crossing); with its clipped
+// channels in the blue's proportions it is the blue. A line that clips
+// green and blue shows more red, and stays white.
+TEST(ClippedColor, TwoClippedChannelsMayTakeTheTargetsProportions) {
+  const ColorVec blue = feature(63, 175, 255), white = feature(105, 150, 255);
+  const float center[3] = {138, 255, 255};
+  const ClippedColor c(center);
+  ASSERT_TRUE(c.saturated());
+  const ColorVec seen = feature(center[0], center[1], center[2]);
+  EXPECT_LT(colorDistance(seen, white), colorDistance(seen, blue));
+  EXPECT_LT(c.distance(blue), 5.f) << c.distance(white);
+  EXPECT_GT(c.distance(white), 5 * c.distance(blue));
+  const float line[3] = {182, 255, 255};
+  const ClippedColor l(line);
+  EXPECT_LT(l.distance(white), l.distance(blue));
+}
+
 TEST(ClippedColor, UnclippedIsThePlainDistanceAndWhiteSaysNothing) {
   const float dim[3] = {120, 60, 10};
   const ClippedColor d(dim);

@@ -35,6 +35,13 @@ void greenCastTealRose(SceneSpec& s, int) {
   s.noise_sigma = 3.0;
 }
 
+void greenCastLemonLightOrangeBall(SceneSpec& s, int) {
+  cast(s, {0.8, 1.3, 0.8}, 0.8);
+  s.materials.yellow = {245, 245, 80};
+  s.materials.ball = {255, 165, 60};
+  s.lighting.uneven_ratio = 3.0;
+}
+
 const std::vector<Condition>& conditions() {
   static const std::vector<Condition> list = {
       // --- casts: the white balance on its warm-cold and green-magenta axes
@@ -156,6 +163,30 @@ const std::vector<Condition>& conditions() {
       // second search with the frame's own colors finds the robot
       // (searchAgainWithFrameColors). Recall 0.989 -> 1.000 at 2448 x 2048.
       {"green_cast_teal_rose_dark_noisy", greenCastTealRose},
+      {"tungsten_magenta_amber_gamma_0.6", [](SceneSpec& s, int) {
+         cast(s, kTungsten, 1.0, 0.6);
+         s.materials.pink = {225, 30, 200};
+         s.materials.yellow = {250, 165, 0};
+       }},
+      {"magenta_cast_navy_teal_dark_noisy", [](SceneSpec& s, int) {
+         cast(s, {1.2, 0.8, 1.2}, 0.8);
+         s.materials.blue = {20, 30, 125};
+         s.materials.green = {20, 175, 150};
+         s.lighting.exposure = 0.5;
+         s.noise_sigma = 3.0;
+       }},
+      {"gray_green_carpet_cold_desaturated_vignetting", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 0.5);
+         s.materials.carpet = {78, 108, 66};
+         s.materials.carpet_texture = 0.28;
+         s.lighting.vignetting = 0.6;
+       }},
+      // Lemon yellow clips green under a green cast, so a yellow center
+      // reads as orange under the lines' white as the light orange ball
+      // does, and the reddest yellow center explained the ball (ball
+      // recall 0.000 at both sizes). Only centers clipped in no channel
+      // set the reddest yellow now (learnFrameColors).
+      {"green_cast_lemon_light_orange_ball_uneven", greenCastLemonLightOrangeBall},
       // --- ball shades
       {"ball_red_orange", [](SceneSpec& s, int) { s.materials.ball = {235, 65, 20}; }},
       {"ball_light_orange", [](SceneSpec& s, int) { s.materials.ball = {255, 165, 60}; }},
@@ -215,6 +246,17 @@ TEST(SceneColorSweepPalePink, ClippedPalePinkSplitFromTheRobotsOwnGreen) {
 // --gtest_also_run_disabled_tests, DV_SCENE_FULL=1 and DV_MISSES=1).
 const std::vector<Condition>& openConditions() {
   static const std::vector<Condition> list = {
+      // Sky blue clips blue under cold LED, and in a sun patch green too:
+      // the centers read (138..162, 255, 255), and most make no blob under
+      // the clipped lines' white (recall 0.966 / 0.977, false balls beside
+      // those robots: ball precision 0.800 / 0.667).
+      {"cold_sky_blue_yellow_green_sun", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 0.7);
+         s.materials.blue = {90, 175, 245};
+         s.materials.green = {150, 215, 40};
+         s.lighting.sun_patches = {{{-1000, -1500}, 700, 400, 0.3, 1.7, 0.2},
+                                   {{-3200, 1200}, 500, 300, -0.5, 1.5, 0.15}};
+       }},
       {"tungsten_overexposed_uneven_light", [](SceneSpec& s, int) {
          cast(s, kTungsten, 0.8);
          s.lighting.exposure = 1.5;

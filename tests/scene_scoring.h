@@ -231,8 +231,22 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
           break;
         }
       }
-      if (!matched && std::getenv("DV_MISSES"))
+      if (!matched && std::getenv("DV_MISSES")) {
         std::printf("missed: ball at (%.0f, %.0f), a blob there %s\n", b.x(), b.y(), complete ? "yes" : "no");
+        const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - b.z());
+        const double px = cpos.x() + k * (b.x() - cpos.x()), py = cpos.y() + k * (b.y() - cpos.y());
+        for (const auto& bl : blobs.blobs)
+          if (std::hypot(bl.position.x - px, bl.position.y - py) < 15)
+            std::printf("  blob score %.2f, rgb %.0f %.0f %.0f%s\n", bl.score, bl.rgb[0], bl.rgb[1], bl.rgb[2],
+                        bl.streak ? " (streak)" : "");
+        ColorVec classes[Detector::kClassColorCount];
+        detector.classColors(classes);
+        std::printf("  classes (chromaticity):");
+        for (int c = 0; c < Detector::kClassColorCount; ++c)
+          std::printf(" %s %.0f %.0f %.0f;", Detector::classColorName(c), classes[c].c[0], classes[c].c[1],
+                      classes[c].c[2]);
+        std::printf(" lines rgb %.0f %.0f %.0f\n", blobs.neutral.rgb[0], blobs.neutral.rgb[1], blobs.neutral.rgb[2]);
+      }
     }
     // Balls reported where no ball is (DV_MISSES).
     for (const auto& d : out.balls) {

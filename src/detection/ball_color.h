@@ -30,7 +30,7 @@ struct FrameColors {
   float spread[color_class::kNumClasses] = {};  // rms distance of its samples (0: unknown)
   bool seen[color_class::kNumClasses] = {};     // the class had samples in this frame
   NeutralColor white;                           // the lines' RGB (pipeline/blob.h)
-  // Hue (colorHue under `white`) of the reddest yellow center.
+  // Hue (colorHue under `white`) of the reddest unclipped yellow center.
   float yellow_hue_min = 0;
   // The orange reference as this camera shows colors (ColorMap), if known.
   std::optional<ColorVec> mapped_orange;

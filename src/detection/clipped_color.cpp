@@ -27,6 +27,21 @@ float ClippedColor::distance(const ColorVec& target) const {
       if (rgb_[c] >= kClipLevel) v[c] = rgb_[c] * (1.f + step * i);
     best = std::min(best, colorDistance(colorFeature(v[0], v[1], v[2]), target));
   }
+  if (n_clipped_ == 2) {
+    // Two clipped channels need not have grown alike: the target's own
+    // proportions, scaled to the unclipped channel, where its clipped
+    // channels would have clipped too (within kMaxClipGain). A sky-blue
+    // center clipped in green and blue, (138, 255, 255), is the team's
+    // blue, and no line: a white that clips green shows more red.
+    int u = 0;
+    while (rgb_[u] >= kClipLevel) ++u;
+    if (target.c[u] > 0) {
+      const float s = rgb_[u] / target.c[u];
+      for (int c = 0; c < 3; ++c)
+        v[c] = c == u ? rgb_[c] : std::clamp(s * target.c[c], rgb_[c], kMaxClipGain * rgb_[c]);
+      best = std::min(best, colorDistance(colorFeature(v[0], v[1], v[2]), target));
+    }
+  }
   return best;
 }
 

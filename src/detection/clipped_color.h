@@ -26,9 +26,10 @@ class ClippedColor {
   bool saturated() const { return n_clipped_ >= 2; }
   // Smallest chromaticity distance from `c` to the candidate colors; the
   // plain distance when nothing or everything clipped. Two clipped channels
-  // grow together (the candidates are the colors whose two channels are
-  // alike: a pale yellow's red and green), one of the many hues that could
-  // clip so; for a saturated color, a lower bound on the nearest.
+  // grow together (the colors whose two channels are alike: a pale
+  // yellow's red and green), or take `c`'s proportions scaled to the
+  // unclipped channel where that clips both (a sky blue's green and blue);
+  // for a saturated color, a lower bound on the nearest.
   float distance(const ColorVec& c) const;
 
  private:

@@ -1,11 +1,11 @@
 #pragma once
 // The detector's state and stages (detector.h), shared by the files that
-// hold one stage each: detector.cpp (the frame: blobs in, detections out),
-// hypothesis_search.h (patterns of blobs -> robot hypotheses),
-// detector_identities.cpp (color classes -> team and id), detector_tracks.cpp
-// (robot tracks and identity hysteresis), detector_balls.cpp (the ball
-// candidates, judged by ball_color.h and selected by ball_policy.h).
-// Private to those files.
+// hold one stage each: detector.cpp (the frame: blobs in, detections out;
+// which hypotheses of hypothesis_search.h become robots), detector_colors.cpp
+// (this frame's color classes from its robots -> teams; ids by
+// robot_identity.h), detector_tracks.cpp (robot tracks and identity
+// hysteresis), detector_balls.cpp (the ball candidates, judged by
+// ball_color.h and selected by ball_policy.h). Private to those files.
 #include "detection/detector.h"
 
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include "detection/frame_blob.h"
 #include "detection/hypothesis_search.h"
 #include "detection/pattern_fit.h"
+#include "detection/robot_identity.h"
 #include "detection/robot_tracker.h"
 #include "detection/weak_sides.h"
 #include "pipeline/view_stretch.h"
@@ -57,7 +58,7 @@ struct Detector::Impl {
   bool frame_seen[kNumClasses];       // class had samples in this frame
   float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
   NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
-  float yellow_hue_min = 0;           // of this frame's yellow centers (learnFrameColors)
+  float yellow_hue_min = 0;           // of this frame's unclipped yellow centers (learnFrameColors)
   float min_saturation = 0;
   DetectionHealth health;             // of the last frame
   ColorMap color_map;                 // references -> this camera's colors
@@ -74,7 +75,6 @@ struct Detector::Impl {
   std::vector<BallCandidate> ball_cands;
   std::vector<ColorVec> samples;
   std::vector<uint8_t> labels;
-  std::vector<int> sample_owner;
   std::vector<float> score_buf;
   double last_t = 0;
   bool have_frame = false;
@@ -149,8 +149,8 @@ struct Detector::Impl {
   // pink; frame_color holds them (the retained class where a class had no
   // samples).
   void learnFrameColors();
-  // Each robot's side colors, against its own center and this frame's
-  // green and pink, and the id they make; the camera's color map.
+  // Each robot's id (robot_identity.h), the ids teammates rule out
+  // (partial_ids.h), and the camera's color map.
   void identifyRobots();
 
   // Where no side blob of this frame is pink (pale dots that peak as none,
@@ -161,15 +161,7 @@ struct Detector::Impl {
   // (orderByRatio) is this frame's pink.
   void pinkFromUnseenSlots();
 
-  // The side slots of `r` that neither a blob nor a weak peak filled: the
-  // color the camera saw there (seen_color.h), when clearly nearer to the
-  // robot's own `green` or `pink`, sets the slot's marker.
-  void probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,
-                         std::array<MarkerColor, 4>& colors) const;
-
-  // Refit at the team's height (pattern offsets are mm on the robot top).
-  // Weak peaks sit less exactly than blobs: where the center and three side
-  // blobs are blobs, those alone give the pose.
+  // refitAtTeamHeight (robot_identity.h) over this frame's blobs.
   void refit(Hypothesis& h) const;
 
   int weakCount(const Hypothesis& h) const {

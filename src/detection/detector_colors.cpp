@@ -80,10 +80,16 @@ void Detector::Impl::learnFrameColors() {
     learnClass(kYellow, kBlue, res);
     // The reddest yellow center under the lines' white: a color redder
     // than every one of them is no yellow the frame shows (explainedByNone).
+    // A center clipped in a channel shows a color it does not have (a
+    // lemon yellow clipped in green reads as orange as a light orange
+    // ball): only unclipped ones count.
     yellow_hue_min = std::numeric_limits<float>::max();
     if (neutral.valid)
-      for (int i = 0; i < nr; ++i)
-        if (labels[i] == 0) yellow_hue_min = std::min(yellow_hue_min, colorHue(blobs[robots[i].blob[0]].rgb, neutral.rgb));
+      for (int i = 0; i < nr; ++i) {
+        const FrameBlob& c = blobs[robots[i].blob[0]];
+        if (labels[i] == 0 && !ClippedColor(c.rgb).clipped())
+          yellow_hue_min = std::min(yellow_hue_min, colorHue(c.rgb, neutral.rgb));
+      }
   }
 
   // Side blobs of all robots: green vs pink; the team colors are external.
@@ -112,44 +118,8 @@ void Detector::Impl::learnFrameColors() {
 
 void Detector::Impl::identifyRobots() {
   if (robots.empty()) return;
-  // Per robot: its own side blobs, against its own center color; then its
-  // weak sides by the nearer of its own two side colors (or the frame's
-  // where it shows one only), when clearly nearer.
-  for (auto& r : robots) {
-    ColorVec local[4];
-    uint8_t lab[4];
-    int side_of[4];
-    int m = 0;
-    for (int i = 1; i < r.n; ++i)
-      if (!blobs[r.blob[i]].weak) side_of[m] = i, local[m++] = blobs[r.blob[i]].color;
-    const ColorVec prior[2] = {frame_color[kGreen], frame_color[kPink]};
-    const ColorVec ext[1] = {blobs[r.blob[0]].color};
-    TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
-    // Two colors on one robot: the redder is pink, whatever the cast (a
-    // pale pink under a magenta cast may lie nearer the frame's green).
-    dv::orderByRatio(res, lab, m, 0, 1, nullptr);
-    std::array<MarkerColor, 4> colors;
-    colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
-    r.seen_sides = 0;
-    for (int i = 0; i < m; ++i) {
-      const int slot = r.slot[side_of[i]];
-      colors[slot - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
-      r.seen_sides |= static_cast<uint8_t>(1u << (slot - 1));
-    }
-    const ColorVec green = res.count[0] > 0 ? res.mean[0] : frame_color[kGreen];
-    const ColorVec pink = res.count[1] > 0 ? res.mean[1] : frame_color[kPink];
-    for (int i = 1; i < r.n; ++i) {
-      if (!blobs[r.blob[i]].weak) continue;
-      const int label = weakSideColor(blobs[r.blob[i]].color, green, pink,
-                                      static_cast<float>(opt.weak_color_margin));
-      if (label < 0) continue;
-      colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
-      r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
-    }
-    if (r.seen_sides != 0xF) probeMissingSides(r, green, pink, colors);
-    r.colors = colors;
-    r.id = patternId(colors);
-  }
+  const IdentityContext context{&blobs, frame_color[kGreen], frame_color[kPink], frame_view, &camera, &opt};
+  for (auto& r : robots) identifyRobot(r, context);
   resolvePartialIds(robots);
 
   // How this camera shows the pattern colors tells where its orange is.
@@ -194,69 +164,6 @@ void Detector::Impl::pinkFromUnseenSlots() {
   frame_color[kPink] = res.mean[1];
 }
 
-void Detector::Impl::probeMissingSides(Hypothesis& r, const ColorVec& green, const ColorVec& pink,
-                       std::array<MarkerColor, 4>& colors) const {
-  if (!opt.probe_missing_sides || !frame_view.image) return;
-  Hypothesis at_team = r;
-  refit(at_team);
-  const double z = teamHeight(r.team);
-  // Each slot read once, its blob's too: the four dots compared under the
-  // light they share, by the same reading.
-  ColorVec dot[4];
-  bool read[4] = {false, false, false, false};
-  int n_read = 0;
-  for (int s = 1; s < kPatternSlots; ++s) {
-    const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
-    const SeenColor seen = seenDiscColor(frame_view, camera, {p.x, p.y, z}, opt.probe_radius);
-    if (seen.share < opt.min_probe_share) continue;
-    dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
-    read[s - 1] = true;
-    ++n_read;
-  }
-  if (n_read == 4) {
-    // All four dots in view: where they are of two colors they split by
-    // themselves (the redder is pink, whatever the cast; a pale pink that
-    // clipped toward white lies clearly nearer to neither frame class),
-    // taken where the sides seen as blobs keep their colors.
-    const ColorVec prior[2] = {green, pink};
-    const ColorVec ext[1] = {blobs[r.blob[0]].color};
-    uint8_t lab[4];
-    TwoMeansResult res = twoMeans(dot, 4, prior, ext, 1, lab);
-    dv::orderByRatio(res, lab, 4, 0, 1, nullptr);
-    bool agrees = res.separated;
-    for (int s = 0; s < 4 && agrees; ++s)
-      if (r.seen_sides >> s & 1) agrees = colors[s] == (lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink);
-    if (agrees) {
-      for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
-      r.seen_sides = 0xF;
-      return;
-    }
-  }
-  for (int s = 0; s < 4; ++s) {
-    if (!read[s] || (r.seen_sides >> s & 1)) continue;
-    const int label = weakSideColor(dot[s], green, pink, static_cast<float>(opt.weak_color_margin));
-    if (label < 0) continue;
-    colors[s] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
-    r.seen_sides |= static_cast<uint8_t>(1u << s);
-  }
-}
-
-void Detector::Impl::refit(Hypothesis& h) const {
-  if (h.n == 1) {  // a center alone: along its ray, the orientation read from the frame
-    h.pose.position = blobs[h.blob[0]].at_team[h.team == Team::Yellow ? 0 : 1];
-    return;
-  }
-  FieldMm pts[kPatternSlots];
-  int slots[kPatternSlots];
-  const int t = h.team == Team::Yellow ? 0 : 1;
-  const bool blobs_only = weakCount(h) > 0 && h.n - weakCount(h) >= kPatternSlots - 1;
-  int n = 0;
-  for (int i = 0; i < h.n; ++i) {
-    if (blobs_only && blobs[h.blob[i]].weak) continue;
-    pts[n] = blobs[h.blob[i]].at_team[t];
-    slots[n++] = h.slot[i];
-  }
-  h.pose = fitPattern(pts, slots, n, opt.score_scale);
-}
+void Detector::Impl::refit(Hypothesis& h) const { refitAtTeamHeight(h, blobs, opt.score_scale); }
 
 }  // namespace dv

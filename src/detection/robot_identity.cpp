@@ -1,0 +1,118 @@
+#include "detection/robot_identity.h"
+
+#include "detection/weak_sides.h"
+
+namespace dv {
+namespace {
+
+// The side slots of `r` that neither a blob nor a weak peak filled: the
+// color the camera saw there (seen_color.h), when clearly nearer to the
+// robot's own `green` or `pink`, sets the slot's marker.
+void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& green, const ColorVec& pink,
+                       std::array<MarkerColor, 4>& colors) {
+  const std::vector<FrameBlob>& blobs = *c.blobs;
+  if (!c.opt->probe_missing_sides || !c.frame.image) return;
+  Hypothesis at_team = r;
+  refitAtTeamHeight(at_team, blobs, c.opt->score_scale);
+  const double z = r.team == Team::Yellow ? c.opt->robot_height_yellow : c.opt->robot_height_blue;
+  // Each slot read once, its blob's too: the four dots compared under the
+  // light they share, by the same reading.
+  ColorVec dot[4];
+  bool read[4] = {false, false, false, false};
+  int n_read = 0;
+  for (int s = 1; s < kPatternSlots; ++s) {
+    const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+    const SeenColor seen = seenDiscColor(c.frame, *c.camera, {p.x, p.y, z}, c.opt->probe_radius);
+    if (seen.share < c.opt->min_probe_share) continue;
+    dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
+    read[s - 1] = true;
+    ++n_read;
+  }
+  if (n_read == 4) {
+    // All four dots in view: where they are of two colors they split by
+    // themselves (the redder is pink, whatever the cast; a pale pink that
+    // clipped toward white lies clearly nearer to neither frame class),
+    // taken where the sides seen as blobs keep their colors.
+    const ColorVec prior[2] = {green, pink};
+    const ColorVec ext[1] = {blobs[r.blob[0]].color};
+    uint8_t lab[4];
+    TwoMeansResult res = twoMeans(dot, 4, prior, ext, 1, lab);
+    dv::orderByRatio(res, lab, 4, 0, 1, nullptr);
+    bool agrees = res.separated;
+    for (int s = 0; s < 4 && agrees; ++s)
+      if (r.seen_sides >> s & 1) agrees = colors[s] == (lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink);
+    if (agrees) {
+      for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+      r.seen_sides = 0xF;
+      return;
+    }
+  }
+  for (int s = 0; s < 4; ++s) {
+    if (!read[s] || (r.seen_sides >> s & 1)) continue;
+    const int label = weakSideColor(dot[s], green, pink, static_cast<float>(c.opt->weak_color_margin));
+    if (label < 0) continue;
+    colors[s] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    r.seen_sides |= static_cast<uint8_t>(1u << s);
+  }
+}
+
+}  // namespace
+
+void identifyRobot(Hypothesis& r, const IdentityContext& c) {
+  const std::vector<FrameBlob>& blobs = *c.blobs;
+  ColorVec local[4];
+  uint8_t lab[4];
+  int side_of[4];
+  int m = 0;
+  for (int i = 1; i < r.n; ++i)
+    if (!blobs[r.blob[i]].weak) side_of[m] = i, local[m++] = blobs[r.blob[i]].color;
+  const ColorVec prior[2] = {c.green, c.pink};
+  const ColorVec ext[1] = {blobs[r.blob[0]].color};
+  TwoMeansResult res = twoMeans(local, m, prior, ext, 1, lab);
+  // Two colors on one robot: the redder is pink, whatever the cast (a
+  // pale pink under a magenta cast may lie nearer the frame's green).
+  dv::orderByRatio(res, lab, m, 0, 1, nullptr);
+  std::array<MarkerColor, 4> colors;
+  colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
+  r.seen_sides = 0;
+  for (int i = 0; i < m; ++i) {
+    const int slot = r.slot[side_of[i]];
+    colors[slot - 1] = lab[i] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    r.seen_sides |= static_cast<uint8_t>(1u << (slot - 1));
+  }
+  const ColorVec green = res.count[0] > 0 ? res.mean[0] : c.green;
+  const ColorVec pink = res.count[1] > 0 ? res.mean[1] : c.pink;
+  for (int i = 1; i < r.n; ++i) {
+    if (!blobs[r.blob[i]].weak) continue;
+    const int label = weakSideColor(blobs[r.blob[i]].color, green, pink,
+                                    static_cast<float>(c.opt->weak_color_margin));
+    if (label < 0) continue;
+    colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
+  }
+  if (r.seen_sides != 0xF) probeMissingSides(r, c, green, pink, colors);
+  r.colors = colors;
+  r.id = patternId(colors);
+}
+
+void refitAtTeamHeight(Hypothesis& h, const std::vector<FrameBlob>& blobs, double score_scale) {
+  if (h.n == 1) {  // a center alone: along its ray, the orientation read from the frame
+    h.pose.position = blobs[h.blob[0]].at_team[h.team == Team::Yellow ? 0 : 1];
+    return;
+  }
+  int n_weak = 0;
+  for (int i = 0; i < h.n; ++i) n_weak += blobs[h.blob[i]].weak;
+  FieldMm pts[kPatternSlots];
+  int slots[kPatternSlots];
+  const int t = h.team == Team::Yellow ? 0 : 1;
+  const bool blobs_only = n_weak > 0 && h.n - n_weak >= kPatternSlots - 1;
+  int n = 0;
+  for (int i = 0; i < h.n; ++i) {
+    if (blobs_only && blobs[h.blob[i]].weak) continue;
+    pts[n] = blobs[h.blob[i]].at_team[t];
+    slots[n++] = h.slot[i];
+  }
+  h.pose = fitPattern(pts, slots, n, score_scale);
+}
+
+}  // namespace dv

@@ -1,0 +1,98 @@
+// A robot's id from its dots on hand-made blobs (detection/robot_identity.h):
+// the split of its own side colors, its weak peaks and the refit at its
+// team's height.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "detection/robot_identity.h"
+#include "geometry/robot_pattern.h"
+
+namespace dv {
+namespace {
+
+ColorVec feature(float r, float g, float b) { return colorFeature(r, g, b); }
+
+struct RobotBlobs {
+  std::vector<FrameBlob> blobs;
+  Hypothesis robot;
+  // A robot at `at` with the dots of `id`, drawn in `green` and `pink`;
+  // `weak` (bit s-1): slot s is a weak peak.
+  RobotBlobs(const FieldMm& at, double orientation, int id, const ColorVec& green, const ColorVec& pink,
+             unsigned weak = 0) {
+    const auto colors = patternColors(id);
+    robot.n = kPatternSlots;
+    for (int s = 0; s < kPatternSlots; ++s) {
+      FrameBlob b;
+      b.at_ref = s == 0 ? at : slotPosition(at, orientation, s);
+      b.at_team[0] = b.at_team[1] = b.at_ref;
+      b.color = s == 0 ? feature(90, 90, 230) : colors[s - 1] == MarkerColor::Green ? green : pink;
+      b.weak = s > 0 && (weak >> (s - 1) & 1);
+      b.valid = true;
+      robot.blob[s] = s, robot.slot[s] = s;
+      blobs.push_back(b);
+    }
+    robot.team = Team::Blue;
+  }
+};
+
+IdentityContext context(const std::vector<FrameBlob>& blobs, const DetectorOptions& opt, const ColorVec& green,
+                        const ColorVec& pink) {
+  return {&blobs, green, pink, FrameView{}, nullptr, &opt};
+}
+
+TEST(RobotIdentity, EveryIdFromItsFourDots) {
+  const DetectorOptions opt;
+  const ColorVec green = feature(60, 200, 80), pink = feature(230, 90, 160);
+  for (int id = 0; id < 16; ++id) {
+    RobotBlobs r({1000, 500}, 0.3 * id, id, green, pink);
+    identifyRobot(r.robot, context(r.blobs, opt, green, pink));
+    EXPECT_EQ(r.robot.id, id);
+    EXPECT_TRUE(r.robot.fullPattern()) << "id " << id;
+  }
+}
+
+// Under a magenta cast a pale pink may lie nearer the frame's green than
+// its pink; on one robot the redder of its two colors is pink all the same.
+// (A robot of one color, ids 8 and 9, is judged by the frame's colors.)
+TEST(RobotIdentity, TheRedderOfARobotsTwoColorsIsPink) {
+  const DetectorOptions opt;
+  const ColorVec frame_green = feature(150, 150, 140), frame_pink = feature(240, 60, 200);
+  const ColorVec green = feature(120, 170, 130), pale_pink = feature(200, 130, 170);
+  ASSERT_LT(colorDistance(pale_pink, frame_green), colorDistance(pale_pink, frame_pink));
+  for (int id : {1, 6, 13, 14}) {
+    RobotBlobs r({-500, 200}, 1.0, id, green, pale_pink);
+    identifyRobot(r.robot, context(r.blobs, opt, frame_green, frame_pink));
+    EXPECT_EQ(r.robot.id, id);
+  }
+}
+
+// A weak peak takes the nearer of the robot's own two colors where clearly
+// nearer; a weak peak of neither color leaves its slot unseen.
+TEST(RobotIdentity, WeakPeaksTakeTheRobotsOwnColorsWhereClear) {
+  const DetectorOptions opt;
+  const ColorVec green = feature(60, 200, 80), pink = feature(230, 90, 160);
+  RobotBlobs r({0, 0}, -0.5, 6, green, pink, /*weak=*/0b0100);
+  identifyRobot(r.robot, context(r.blobs, opt, green, pink));
+  EXPECT_EQ(r.robot.id, 6);
+  EXPECT_TRUE(r.robot.fullPattern());
+  RobotBlobs unclear({0, 0}, -0.5, 6, green, pink, 0b0100);
+  unclear.blobs[3].color = feature(145, 168, 125);  // halfway: neither
+  identifyRobot(unclear.robot, context(unclear.blobs, opt, green, pink));
+  EXPECT_EQ(unclear.robot.seen_sides, 0b1011);
+}
+
+// Where three sides are blobs, a weak peak's position does not move the
+// refitted pose.
+TEST(RobotIdentity, RefitTrustsBlobsOverAWeakPeak) {
+  const ColorVec green = feature(60, 200, 80), pink = feature(230, 90, 160);
+  RobotBlobs r({300, -200}, 0.7, 3, green, pink, /*weak=*/0b0001);
+  r.blobs[1].at_team[0] = r.blobs[1].at_team[1] = {r.blobs[1].at_ref.x + 8, r.blobs[1].at_ref.y - 6};
+  refitAtTeamHeight(r.robot, r.blobs, 10);
+  EXPECT_NEAR(r.robot.pose.position.x, 300, 0.01);
+  EXPECT_NEAR(r.robot.pose.position.y, -200, 0.01);
+  EXPECT_NEAR(r.robot.pose.orientation, 0.7, 1e-4);
+}
+
+}  // namespace
+}  // namespace dv
