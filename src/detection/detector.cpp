@@ -107,6 +107,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   }
   learnFrameColors();
   searchAgainWithFrameColors();
+  robotsAroundUnpeakedCenters();
   identifyRobots();
   for (auto& r : robots) {
     if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);
@@ -187,17 +188,14 @@ int Detector::Impl::searchAgainWithFrameColors() {
   for (int c = 0; c < n_strong; ++c) {
     const FrameBlob& b = blobs[c];
     if (!b.valid || b.streak || b.robot >= 0 || b.implausible_center) continue;
-    const ClippedColor seen(b.rgb);
-    const float d_team = std::min(seen.distance(frame_color[kYellow]), seen.distance(frame_color[kBlue]));
-    bool team_colored = true;
-    for (int k : {kGreen, kPink, kField, kWhite}) team_colored = team_colored && d_team < seen.distance(frame_color[k]);
-    if (!team_colored) continue;
+    Team team;
+    if (!teamColored(ClippedColor(b.rgb), &team)) continue;
     Hypothesis h = search.bestAt(in, c);
     if (h.rank <= 0 || overlapsAccepted(h.pose)) continue;
     bool free = true;
     for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
     if (!free) continue;
-    h.team = nearestOf(b.color, kYellow, kBlue) == kYellow ? Team::Yellow : Team::Blue;
+    h.team = team;
     h.confidence = h.rank;
     for (int i = 0; i < h.n; ++i) blobs[h.blob[i]].robot = static_cast<int>(robots.size());
     robots.push_back(h);

@@ -123,6 +123,28 @@ struct Detector::Impl {
   // pale rose dot reads as neither green nor pink against those). Robots
   // found so join `robots` with the nearer team color. Returns how many.
   int searchAgainWithFrameColors();
+  // Whether `seen` is nearer to this frame's yellow or blue than to any
+  // other class it learned (clipped channels as ClippedColor reads them);
+  // `team`, where given, is set to the nearer team.
+  bool teamColored(const ClippedColor& seen, Team* team = nullptr) const;
+  // Robots whose center made no blob: the pixel stage's color gate judges
+  // a center against the lines' white, and a pale center clipped in two
+  // channels (sky blue in a sun patch, (150, 255, 255) beside lines of
+  // (160, 220, 255)) is as little saturated as a line crossing. Where free
+  // side blobs (min_side_blobs of them) fit the pattern tightly
+  // (min_weak_fit) around a place where no blob peaked, the center's color
+  // is read from the frame there: as bright as a marker and team-colored
+  // (teamColored), it is the robot, its center appended to `blobs`.
+  // Returns how many robots joined `robots`.
+  int robotsAroundUnpeakedCenters();
+  // Side blobs a (slot sa) and b (slot sb) with the free blobs partner[0, k)
+  // in the other slots; the pattern `h` (slots 1.. filled; the center's
+  // color read into center_rgb) where it passes robotsAroundUnpeakedCenters'
+  // tests.
+  bool patternAroundSides(int a, int sa, int b, int sb, const int* partner, int k, Hypothesis& h,
+                          float center_rgb[3]);
+  // A center blob read from the frame at `at_ref` (search plane).
+  FrameBlob centerBlobAt(const FieldMm& at_ref, const float rgb[3]) const;
 
   // ------------------------------------------------------ color classes
   // Clutter (carpet noise, line crossings) can line up like a pattern. A

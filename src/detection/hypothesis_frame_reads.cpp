@@ -27,7 +27,7 @@ bool HypothesisSearch::slotOutOfView(const PatternPose& pose, int slot) const {
   return false;
 }
 
-bool HypothesisSearch::slotShowsMarker(const PatternPose& pose, int slot, int c) const {
+bool HypothesisSearch::slotReadsAsMarker(const PatternPose& pose, int slot, int c, ColorVec& color) const {
   if (!opt_.probe_missing_sides || !in_.frame.image) return false;
   const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
   const SeenColor seen = seenDiscColor(in_.frame, camera_, {p.x, p.y, ref_height_}, opt_.probe_radius);
@@ -42,8 +42,38 @@ bool HypothesisSearch::slotShowsMarker(const PatternPose& pose, int slot, int c)
   const bool is_carpet = carpet.share > 0 && colorDistance(carpet_color, in_.colors[kField]) <
                                                  colorDistance(carpet_color, in_.colors[kWhite]);
   if (is_carpet && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
-  return weakSideColor(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]), in_.colors[kGreen],
-                       in_.colors[kPink], static_cast<float>(opt_.weak_color_margin)) >= 0;
+  color = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
+  return true;
+}
+
+bool HypothesisSearch::clearlySideColored(const ColorVec& color) const {
+  return weakSideColor(color, in_.colors[kGreen], in_.colors[kPink], static_cast<float>(opt_.weak_color_margin)) >= 0;
+}
+
+bool HypothesisSearch::slotShowsMarker(const PatternPose& pose, int slot, int c) const {
+  ColorVec color;
+  return slotReadsAsMarker(pose, slot, c, color) && clearlySideColored(color);
+}
+
+bool HypothesisSearch::allSlotsShowMarkers(const PatternPose& pose, unsigned peaked, int c) const {
+  ColorVec dot[4];
+  bool clear = true;
+  for (int s = 1; s < kPatternSlots; ++s) {
+    const bool read = slotReadsAsMarker(pose, s, c, dot[s - 1]);
+    if (peaked >> s & 1u) continue;
+    if (slotOutOfView(pose, s) || !read) return false;
+    clear = clear && clearlySideColored(dot[s - 1]);
+  }
+  if (clear) return true;
+  // Not each clearly green or pink (a pink clipped toward white): all four
+  // dots must read as markers and split into two colors by themselves, as
+  // the robot's identity then splits them (robot_identity.h).
+  for (int s = 1; s < kPatternSlots; ++s)
+    if ((peaked >> s & 1u) && !slotReadsAsMarker(pose, s, c, dot[s - 1])) return false;
+  const ColorVec prior[2] = {in_.colors[kGreen], in_.colors[kPink]};
+  const ColorVec ext[1] = {blobAt(c).color};
+  uint8_t labels[4];
+  return twoMeans(dot, 4, prior, ext, 1, labels).separated;
 }
 
 void HypothesisSearch::completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best) {
@@ -57,14 +87,26 @@ void HypothesisSearch::completeFromTwoSides(int c, const int* nbr, int k, Hypoth
   const bool center_like =
       nearer(kYellow, kBlue) < nearer(kGreen, kPink) || ClippedColor(blobAt(c).rgb).saturated();
   // Whether the slots of `pose` other than slot[1], slot[2] are out of
-  // view or show markers; `by_marker`: at least one shows a marker.
+  // view or show markers; `by_marker`: at least one shows a marker. With
+  // both in view, allSlotsShowMarkers judges them (a clipped pink pair
+  // splits from the robot's own green).
   auto othersShown = [&](const int* blob, const int* slot, const PatternPose& pose, int n_weak, bool& by_marker) {
     by_marker = false;
+    const unsigned peaked = 1u << slot[1] | 1u << slot[2];
+    bool cut = false;  // a slot out of view: a robot at the image border
     for (int s = 1; s < kPatternSlots; ++s) {
-      if (s == slot[1] || s == slot[2] || (n_weak == 0 && slotOutOfView(pose, s))) continue;
-      if (!center_like || !slotShowsMarker(pose, s, blob[0])) return false;
+      if (peaked >> s & 1u) continue;
+      if (n_weak == 0 && slotOutOfView(pose, s)) {
+        cut = true;
+        continue;
+      }
+      if (!center_like) return false;
       by_marker = true;
     }
+    if (!by_marker) return true;
+    if (!cut) return allSlotsShowMarkers(pose, peaked, blob[0]);
+    for (int s = 1; s < kPatternSlots; ++s)
+      if (!(peaked >> s & 1u) && !slotOutOfView(pose, s) && !slotShowsMarker(pose, s, blob[0])) return false;
     return true;
   };
   const FitTolerance tol = fitToleranceAt(blobAt(c).at_ref);
@@ -128,8 +170,7 @@ void HypothesisSearch::completeFromCenter(int c, Hypothesis& best) {
   pose.position = cp;
   pose.orientation = *orientation;
   pose.score = 1;
-  for (int s = 1; s < kPatternSlots; ++s)
-    if (slotOutOfView(pose, s) || !slotShowsMarker(pose, s, c)) return;
+  if (!allSlotsShowMarkers(pose, 0, c)) return;
   const double rank = kFourBlobPenalty * kEdgeRankFactor * kOneSideRankFactor * kOneSideRankFactor;
   if (rank <= best.rank) return;
   Hypothesis h;
@@ -154,10 +195,7 @@ void HypothesisSearch::completeFromOneSide(int c, const int* nbr, int k, Hypothe
       const FieldMm pts[2] = {cp, pa};
       const PatternPose pose = fitPattern(pts, slot, 2, tol);
       if (pose.score < opt_.min_weak_fit) continue;
-      bool shown = true;
-      for (int s = 1; s < kPatternSlots && shown; ++s)
-        if (s != sa) shown = !slotOutOfView(pose, s) && slotShowsMarker(pose, s, c);
-      if (!shown) continue;
+      if (!allSlotsShowMarkers(pose, 1u << sa, c)) continue;
       ++n_found;
       found.n = 2;
       for (int i = 0; i < 2; ++i) found.blob[i] = blob[i], found.slot[i] = slot[i];

@@ -57,7 +57,9 @@ Hypothesis HypothesisSearch::bestAt(int c) {
     dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
     ++k;
   }
-  if (!weak_on && k < 2) return best;
+  // Fewer than two side blobs make a pattern only with weak peaks or the
+  // frame's reading (completeFromOneSide, completeFromCenter).
+  if (!weak_on && k < 2 && !(opt_.probe_missing_sides && in_.frame.image)) return best;
   if (k > kMaxNeighbors) {  // keep the ones nearest to the side blob ring
     for (int a = 0; a < kMaxNeighbors; ++a) {
       int nearest = a;
@@ -119,7 +121,10 @@ Hypothesis HypothesisSearch::bestAt(int c) {
           }
   }
   if (weak_on && !(best.rank > 0 && best.n == kPatternSlots)) completeWithWeak(c, nbr.data(), k, best);
-  if (best.rank <= 0) completeFromTwoSides(c, nbr.data(), k, best);
+  // A pattern of three side blobs that fits loosely (one of them clutter,
+  // such as a shadow on the robot's top) may rank below the two of them
+  // that fit tightly with the markers the frame shows.
+  if (best.rank < kFourBlobPenalty * kEdgeRankFactor) completeFromTwoSides(c, nbr.data(), k, best);
   return best;
 }
 

@@ -90,6 +90,18 @@ class HypothesisSearch {
   // clutter lie on the carpet), and clearly nearer to the green or the
   // pink class than to the other.
   bool slotShowsMarker(const PatternPose& pose, int slot, int c) const;
+  // slotShowsMarker's reading without its color test: in full view, bright
+  // enough and over the carpet; `color` is what the frame shows there.
+  bool slotReadsAsMarker(const PatternPose& pose, int slot, int c, ColorVec& color) const;
+  // Clearly nearer to the green or the pink class than to the other.
+  bool clearlySideColored(const ColorVec& color) const;
+  // Whether every slot of `pose` not in `peaked` (bit s: slot s has a
+  // peak) is in full view and shows a marker: each clearly green or pink,
+  // or, where all four slots read as markers, the four splitting into two
+  // colors by themselves (twoMeans, the center color external): a pink
+  // clipped toward white beside the robot's green is clearly nearer to
+  // neither class, and the robot's identity splits its dots the same way.
+  bool allSlotsShowMarkers(const PatternPose& pose, unsigned peaked, int c) const;
 
   // A center blob and two side blobs that fit the pattern tightly, where
   // each of the other two slots is either not seen whole (slotOutOfView: a

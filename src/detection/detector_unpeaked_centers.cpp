@@ -1,0 +1,138 @@
+// Robots whose center made no blob (detector_impl.h,
+// robotsAroundUnpeakedCenters): the pattern's side blobs alone give the
+// pose, the frame tells the center's color.
+#include "detection/detector_impl.h"
+
+namespace dv {
+namespace {
+
+// How many free side blobs one blob may pair with (the pattern's other
+// three, with room for clutter).
+constexpr int kMaxPartners = 16;
+// Such a robot's confidence: its pose's fit, a share lower than a robot
+// whose center peaked (the rank a pattern completed from the frame takes).
+constexpr double kUnpeakedCenterRankFactor = 0.8;
+// A rank factor for a missing side blob, as the hypothesis search's.
+constexpr double kThreeSidePenalty = 0.5;
+
+}  // namespace
+
+bool Detector::Impl::teamColored(const ClippedColor& seen, Team* team) const {
+  const float d_yellow = seen.distance(frame_color[kYellow]), d_blue = seen.distance(frame_color[kBlue]);
+  const float d_team = std::min(d_yellow, d_blue);
+  for (int k : {kGreen, kPink, kField, kWhite})
+    if (!(d_team < seen.distance(frame_color[k]))) return false;
+  if (team) *team = d_yellow <= d_blue ? Team::Yellow : Team::Blue;
+  return true;
+}
+
+int Detector::Impl::robotsAroundUnpeakedCenters() {
+  if (!frame_view.image || !opt.probe_missing_sides) return 0;
+  auto free = [&](int i) {
+    const FrameBlob& b = blobs[i];
+    return b.valid && !b.streak && !b.weak && b.robot < 0;
+  };
+  // Two side slots lie this far apart on the robot top at most.
+  const double reach = 2 * RobotPatternGeometry::kSideBlobDistance + opt.weak_side_tolerance;
+  std::array<int, kMaxPartners> partner;
+  int added = 0;
+  for (int a = 0; a < n_strong; ++a) {
+    if (!free(a)) continue;
+    int k = 0;
+    for (const auto& hit : index.within(blobs[a].at_ref, reach)) {
+      const int b = static_cast<int>(hit.first);
+      if (b != a && k < kMaxPartners && free(b)) partner[k++] = b;
+    }
+    // The best pattern blob a takes part in (four sides before three).
+    Hypothesis best;
+    float best_rgb[3] = {0, 0, 0};
+    for (int j = 0; j < k; ++j) {
+      const int b = partner[j];
+      const double d_ab = detector_detail::dist(blobs[a].at_ref, blobs[b].at_ref);
+      for (int sa = 1; sa < kPatternSlots; ++sa)
+        for (int sb = sa + 1; sb < kPatternSlots; ++sb) {
+          const FieldMm oa = patternOffset(sa), ob = patternOffset(sb);
+          if (std::abs(d_ab - detector_detail::dist(oa, ob)) > opt.weak_side_tolerance) continue;
+          for (int swap = 0; swap < 2; ++swap) {
+            Hypothesis h;
+            float rgb[3];
+            if (patternAroundSides(a, swap ? sb : sa, b, swap ? sa : sb, partner.data(), k, h, rgb) &&
+                h.rank > best.rank)
+              best = h, std::copy(rgb, rgb + 3, best_rgb);
+          }
+        }
+    }
+    if (best.rank <= 0) continue;
+    const FrameBlob center = centerBlobAt(best.pose.position, best_rgb);
+    // The blob list's reserve bounds it (no allocation per frame).
+    if (!center.valid || blobs.size() == blobs.capacity()) continue;
+    blobs.push_back(center);
+    best.blob[0] = static_cast<int>(blobs.size()) - 1, best.slot[0] = 0;
+    for (int i = 0; i < best.n; ++i) blobs[best.blob[i]].robot = static_cast<int>(robots.size());
+    robots.push_back(best);
+    ++added;
+  }
+  return added;
+}
+
+bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int* partner, int k, Hypothesis& h,
+                                        float center_rgb[3]) {
+  FieldMm pts[kPatternSlots];
+  int slot[kPatternSlots];
+  h.n = 1;  // slot 0 (the center) is filled last
+  auto add = [&](int blob, int s) {
+    h.blob[h.n] = blob, h.slot[h.n] = s;
+    pts[h.n - 1] = blobs[blob].at_ref, slot[h.n - 1] = s;
+    ++h.n;
+  };
+  add(a, sa);
+  add(b, sb);
+  const PatternPose pair = fitPattern(pts, slot, 2, opt.score_scale);
+  // The other slots: the free blob nearest each, within the weak sides'
+  // tolerance.
+  for (int s = 1; s < kPatternSlots; ++s) {
+    if (s == sa || s == sb) continue;
+    const FieldMm want = slotPosition(pair.position, pair.orientation, s);
+    int best = -1;
+    double best_d = opt.weak_side_tolerance;
+    for (int j = 0; j < k; ++j) {
+      const int c = partner[j];
+      const double d = detector_detail::dist(blobs[c].at_ref, want);
+      if (c != a && c != b && d < best_d) best = c, best_d = d;
+    }
+    if (best >= 0) add(best, s);
+  }
+  if (h.n - 1 < opt.min_side_blobs) return false;
+  h.pose = fitPattern(pts, slot, h.n - 1, opt.score_scale);
+  if (h.pose.score < opt.min_weak_fit || overlapsAccepted(h.pose)) return false;
+  // A center that peaked is the first search's to judge.
+  for (const auto& hit : index.within(h.pose.position, RobotPatternGeometry::kCenterBlobRadius))
+    if (blobs[hit.first].valid) return false;
+  const SeenColor seen = seenDiscColor(frame_view, camera, {h.pose.position.x, h.pose.position.y, ref_height},
+                                       opt.probe_radius);
+  if (seen.share < opt.min_probe_share) return false;
+  // As bright as a marker (the robot's dark top is no center), and nearer
+  // to the frame's yellow or blue than to any other class it learned.
+  float sides = 0;
+  for (int i = 1; i < h.n; ++i) sides += blobs[h.blob[i]].brightness();
+  if (seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * sides / (h.n - 1)) return false;
+  if (!teamColored(ClippedColor(seen.rgb), &h.team)) return false;
+  for (int i = 0; i < 3; ++i) center_rgb[i] = seen.rgb[i];
+  h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kThreeSidePenalty) *
+           kUnpeakedCenterRankFactor;
+  h.confidence = h.rank;
+  return true;
+}
+
+FrameBlob Detector::Impl::centerBlobAt(const FieldMm& at_ref, const float rgb[3]) const {
+  FrameBlob f;
+  f.at_ref = at_ref;
+  f.valid = alongRay(at_ref, ref_height, opt.robot_height_yellow, f.at_team[0]) &&
+            alongRay(at_ref, ref_height, opt.robot_height_blue, f.at_team[1]) &&
+            alongRay(at_ref, ref_height, opt.ball_radius, f.at_ball);
+  for (int c = 0; c < 3; ++c) f.rgb[c] = rgb[c];
+  f.color = colorFeature(f.rgb[0], f.rgb[1], f.rgb[2]);
+  return f;
+}
+
+}  // namespace dv
