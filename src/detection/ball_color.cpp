@@ -63,7 +63,7 @@ double BallColorJudge::confidence(const float rgb[3], bool streak, int* nearest)
   return confidence(ClippedColor(rgb), streak, nearest);
 }
 
-double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* nearest) const {
+double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* nearest, bool* unexpected) const {
   if (seen.saturated()) return 0;
   const float d_or = distanceToOrange(seen, streak);
   float d_neg = std::numeric_limits<float>::max();
@@ -76,6 +76,7 @@ double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* ne
   if (nearest) *nearest = nearest_neg;
   const float unexplained = streak ? 0.f : explainedByNone(seen);
   if (d_or >= d_neg && unexplained <= 1) return 0;
+  if (unexpected) *unexpected = d_or >= d_neg;
   const double margin_ratio = (d_neg - d_or) / (d_neg + d_or);
   return std::max(std::min(1.0, margin_ratio / 0.3), std::min(1.0, static_cast<double>(unexplained) - 1));
 }

@@ -43,9 +43,11 @@ class BallColorJudge final : public BallColorTest {
   BallColorJudge(const FrameColors& frame, float min_brightness);
 
   // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
-  // nearest of the other classes.
+  // nearest of the other classes; `unexpected`: the confidence is only that
+  // no class explains the color (it is not nearer to orange than to them).
   double confidence(const float rgb[3], bool streak, int* nearest = nullptr) const;
-  double confidence(const ClippedColor& seen, bool streak, int* nearest = nullptr) const;
+  double confidence(const ClippedColor& seen, bool streak, int* nearest = nullptr,
+                    bool* unexpected = nullptr) const;
   // As confidence() > 0, with the carpet (most of what the border's probes
   // see) ruled out first: a color nearer to the field than to orange and
   // within the field class's reach is neither nearer to orange nor

@@ -103,7 +103,10 @@ void softCentroid(const float* du, const float* dv, const ColorVec* color, const
 // The centroid of the ball-colored samples near `origin`, whose lattice is
 // judged once; false where the silhouette is no whole ball alone. (cu, cv):
 // the center from the origin (px).
-bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, double r, double& cu, double& cv) {
+// `beyond`, where given: the share of the disc that ball-colored samples
+// cover beyond the rim around the yes/no centroid, whatever the area.
+bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, double r, double& cu, double& cv,
+            double* beyond_share = nullptr) {
   const double step = kStepRadii * r;
   const double reach = (kCentroidRadii + kReachRadii) * r;
   const int half = std::min(static_cast<int>(std::ceil(reach / step)), (kMaxSide - 1) / 2);
@@ -133,6 +136,7 @@ bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, d
     }
   const double disc = kPi * r * r, window = kCentroidRadii * r;
   cu = cv = 0;
+  bool whole = true;
   for (int pass = 0; pass < kPasses; ++pass) {
     double su = 0, sv = 0;
     int in = 0;
@@ -143,10 +147,13 @@ bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, d
       ++in;
     }
     const double area = in * step * step;
-    if (area < kMinAreaShare * disc || area > kMaxAreaShare * disc) return false;
-    const double nu = su / in, nv = sv / in;
+    const double nu = in > 0 ? su / in : cu, nv = in > 0 ? sv / in : cv;
     const double moved = std::hypot(nu - cu, nv - cv);
     cu = nu, cv = nv;
+    if (area < kMinAreaShare * disc || area > kMaxAreaShare * disc) {
+      whole = false;
+      break;
+    }
     if (moved < 0.02 * step) break;
   }
   int beyond = 0;
@@ -154,12 +161,21 @@ bool settle(const FrameView& frame, const BallColorTest& test, ImagePx origin, d
     const double x = du[k] - cu, y = dv[k] - cv;
     beyond += is_ball[k] && x * x + y * y > kRimRadii * kRimRadii * r * r;
   }
-  if (beyond * step * step > kMaxBeyondRim * disc) return false;
+  const double beyond_part = beyond * step * step / disc;
+  if (beyond_share) *beyond_share = beyond_part;
+  if (!whole || beyond_part > kMaxBeyondRim) return false;
   softCentroid(du.data(), dv.data(), color.data(), is_ball.data(), is_carpet.data(), n, r, cu, cv);
   return true;
 }
 
 }  // namespace
+
+bool ballColorBeyondRim(const FrameView& frame, const BallColorTest& test, ImagePx start, double r) {
+  if (!frame.image || frame.image->empty() || r < 1) return false;
+  double cu = 0, cv = 0, beyond = 0;
+  settle(frame, test, start, r, cu, cv, &beyond);
+  return beyond > kMaxBeyondRim;
+}
 
 bool ballSilhouetteCenter(const FrameView& frame, const BallColorTest& test, ImagePx start, double r,
                           ImagePx& center) {

@@ -26,4 +26,11 @@ namespace dv {
 bool ballSilhouetteCenter(const FrameView& frame, const BallColorTest& test, ImagePx start, double radius_px,
                           ImagePx& center);
 
+// Whether ball-colored samples near `start` cover more than a tenth of one
+// ball's disc beyond its rim (1.25 radii around their centroid; a ball
+// alone shows none): a ball merged with something of its color, or a
+// color along lines rather than on a disc. False where the lattice leaves
+// the image.
+bool ballColorBeyondRim(const FrameView& frame, const BallColorTest& test, ImagePx start, double radius_px);
+
 }  // namespace dv

@@ -80,7 +80,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     const ClippedColor seen(b.rgb);
     if (seen.saturated()) continue;
     int nearest_neg = kField;
-    const double color_conf = judge.confidence(seen, b.streak, &nearest_neg);
+    bool unexpected = false;
+    const double color_conf = judge.confidence(seen, b.streak, &nearest_neg, &unexpected);
     if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
@@ -89,6 +90,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     }
     if (insideRobot(p)) continue;
+    if (unexpected && !b.streak && colorReachesBeyondRim(i, judge)) continue;
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength)
@@ -183,6 +185,16 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (px) d.pixel = *px;
     out.balls.push_back(d);
   }
+}
+
+bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) const {
+  if (!frame_view.image) return false;
+  const FieldMm at_plane = raw_positions[i];
+  const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane_height});
+  if (!px) return false;
+  const FieldMm& p = blobs[i].at_ball;
+  const double r = ballRadiusPx(camera, {p.x, p.y, opt.ball_radius}, opt.ball_radius);
+  return ballColorBeyondRim(frame_view, judge, *px, r);
 }
 
 }  // namespace dv

@@ -208,6 +208,15 @@ struct Detector::Impl {
 
   // --------------------------------------------------------------- balls
   void findBalls(double t, bool tracking, Detections& out);
+  // Whether the ball color around blob i reaches beyond one ball's rim
+  // (ballColorBeyondRim). A color no class explains is
+  // a ball of an unexpected shade only where it lies on a disc: the Bayer
+  // mosaic's false colors along thin lines (1 to 2 px wide at
+  // 1224 x 1024) make a line crossing a blob of a color near none, and
+  // that color runs on along the lines (a third to a half of a disc beyond
+  // the rim; a ball alone shows none). False where the frame is not at
+  // hand.
+  bool colorReachesBeyondRim(int i, const BallColorTest& judge) const;
   // This frame's colors for the ball's color judge (ball_color.h).
   FrameColors ball_colors;
 
