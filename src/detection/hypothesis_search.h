@@ -107,18 +107,20 @@ class HypothesisSearch {
   // each of the other two slots is either not seen whole (slotOutOfView: a
   // robot at the image border) or shows a marker that did not peak
   // (slotShowsMarker: a dot whose blurred chroma runs into the carpet, as
-  // after JPEG's half-resolution chroma at 1224 x 1024). Where no such pair
+  // after JPEG's half-resolution chroma at 1224 x 1024; with both in view,
+  // allSlotsShowMarkers). Where no such pair
   // of blobs exists, a weak peak may stand for one of the two when both
   // other slots show markers. A diagonal pair (front-left and back-right,
   // or back-left and front-right: 155 degrees apart either way) fits both
   // diagonals; where markers show at the other slots of both placements
   // (far, blurred dots), the pose is one of two and the pattern is not
-  // taken. Ranked below every pattern with three side blobs; an id left
-  // open is a guess unless teammates or a track tell it.
+  // taken. Ranked below every pattern with three side blobs (tried also
+  // where one of three loosely fitting ranks lower); an id left open is a
+  // guess unless teammates or a track tell it.
   void completeFromTwoSides(int c, const int* nbr, int k, Hypothesis& best);
 
   // A center blob (team-colored) and one side blob on the ring, where the
-  // frame shows markers at all three other slots, each in full view: a
+  // frame shows markers at all three other slots (allSlotsShowMarkers): a
   // robot whose other dots did not peak (pale dots beside a dark top, their
   // chroma lost to desaturation or clipping). Each slot the side blob may
   // fill is tried; the pose is taken only where exactly one shows markers
@@ -130,7 +132,7 @@ class HypothesisSearch {
   // its ring: the frame is read along the side-blob ring, and where exactly
   // one orientation puts all four slots on bright points (markers beside
   // the dark top) and each slot then shows a marker in full view
-  // (slotShowsMarker), that is the robot: pale dots that made no peak at
+  // (allSlotsShowMarkers), that is the robot: pale dots that made no peak at
   // all. The orientation is refined from where the bright arcs lie. Ranked
   // below every pattern with a side peak; reported only with its id known.
   void completeFromCenter(int c, Hypothesis& best);
