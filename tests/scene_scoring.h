@@ -214,6 +214,12 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
     };
     matchTeam(frame.truth.robots_yellow(), Team::Yellow);
     matchTeam(frame.truth.robots_blue(), Team::Blue);
+    for (size_t i = 0; i < out.robots.size(); ++i)  // robots reported where none is (DV_MISSES)
+      if (!used[i] && std::getenv("DV_MISSES"))
+        std::printf("false robot: %s %d at (%.0f, %.0f), orientation %.1f deg, confidence %.2f\n",
+                    out.robots[i].team == Team::Yellow ? "yellow" : "blue", out.robots[i].id,
+                    out.robots[i].position.x, out.robots[i].position.y, out.robots[i].orientation * 180 / kPi,
+                    out.robots[i].confidence);
 
     s.balls_detected += static_cast<int>(out.balls.size());
     for (const auto& b : frame.truth.balls()) {

@@ -50,6 +50,14 @@ float BallColorJudge::explainedByNone(const ClippedColor& seen) const {
   return rel;
 }
 
+bool BallColorJudge::hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) const {
+  const float h = colorHue(seen.rgb(), white_);
+  const float yellow = colorHue(f_.color[kYellow].c, white_);
+  const float pink = std::min(0.f, colorHue(f_.color[kPink].c, white_));
+  const float hue_noise = std::atan2(kMinClassRadius, seen.distance(f_.color[kWhite]));
+  return h > pink + hue_noise && h < yellow - hue_noise;
+}
+
 float BallColorJudge::distanceToOrange(const ClippedColor& seen, bool streak) const {
   auto classDistance = [&](const ColorVec& c) {
     return streak ? streakColorDistance(seen, f_.color[kField], c) : seen.distance(c);

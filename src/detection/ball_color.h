@@ -65,6 +65,14 @@ class BallColorJudge final : public BallColorTest {
   // white: clipping and vignetting spread the yellow centers along a
   // curve, so a reach around their mean would also cover the redder ball.
   float explainedByNone(const float rgb[3]) const;
+  // Whether a color's hue lies between this frame's pink and yellow by more
+  // than the hue a color's noise spans at its distance from the white. A
+  // blob's mean color must, to be a ball of a shade of its own: a pale
+  // yellow (a thin line's demosaiced edge under tungsten, (204, 204, 110))
+  // is no more than a paler yellow. Single samples on a ball's rim are
+  // judged without it: mixed with the carpet, their hue passes yellow's on
+  // the way to green.
+  bool hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) const;
 
  private:
   float explainedByNone(const ClippedColor& seen) const;

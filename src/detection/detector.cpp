@@ -185,21 +185,49 @@ int Detector::Impl::searchAgainWithFrameColors() {
   if (!learned) return 0;  // the same colors the first search had
   const HypothesisInputs in = searchInputs(frame_color);
   int added = 0;
-  for (int c = 0; c < n_strong; ++c) {
+  // A peaked marker of a robot's side: a blob, not a weak peak, green or
+  // pink (under a cast the carpet may peak, and look like a team color).
+  auto sideBlob = [&](int i) {
+    const FrameBlob& s = blobs[i];
+    return s.valid && !s.weak && !s.streak && sideColored(ClippedColor(s.rgb));
+  };
+  auto tryCenter = [&](int c, bool weak_center) {
     const FrameBlob& b = blobs[c];
-    if (!b.valid || b.streak || b.robot >= 0 || b.implausible_center) continue;
+    if (!b.valid || b.streak || b.robot >= 0 || b.implausible_center) return;
     Team team;
-    if (!teamColored(ClippedColor(b.rgb), &team)) continue;
+    if (!teamColored(ClippedColor(b.rgb), &team)) return;
     Hypothesis h = search.bestAt(in, c);
-    if (h.rank <= 0 || overlapsAccepted(h.pose)) continue;
-    bool free = true;
+    if (h.rank <= 0 || overlapsAccepted(h.pose)) return;
+    bool free = true, side_blob = false, weak_side = false;
     for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
-    if (!free) continue;
+    for (int i = 1; i < h.n; ++i) side_blob = side_blob || sideBlob(h.blob[i]), weak_side = weak_side || blobs[h.blob[i]].weak;
+    if (!free || (weak_center && (!side_blob || weak_side))) return;
     h.team = team;
     h.confidence = h.rank;
     for (int i = 0; i < h.n; ++i) blobs[h.blob[i]].robot = static_cast<int>(robots.size());
     robots.push_back(h);
     ++added;
+  };
+  for (int c = 0; c < n_strong; ++c) tryCenter(c, false);
+  // A weak peak as the center, beside a free side blob on the ring: a far
+  // robot's center of a few pixels, dim under a cast, may peak below the
+  // threshold where a side dot of it peaked. The pattern must hold such a
+  // side blob and no other weak peak: the frame's reading alone around a
+  // weak peak is too little, and two weak peaks line up by chance (under
+  // a cold cast a blue-green carpet's texture peaks weakly, reads as sky
+  // blue and its darker patches as teal blobs: a false robot of a weak
+  // center, one such blob and a weak side).
+  const double ring = RobotPatternGeometry::kSideBlobDistance;
+  const double ring_tolerance = HypothesisSearch::kWeakPairRingTolerance;
+  const int n_weak = static_cast<int>(weak_index.points().size());
+  for (int w = 0; w < n_weak; ++w) {
+    const int c = n_strong + w;
+    bool beside = false;
+    for (const auto& hit : index.within(blobs[c].at_ref, ring + ring_tolerance)) {
+      const int i = static_cast<int>(hit.first);
+      beside = beside || (blobs[i].robot < 0 && std::sqrt(hit.second) >= ring - ring_tolerance && sideBlob(i));
+    }
+    if (beside) tryCenter(c, true);
   }
   return added;
 }

@@ -90,7 +90,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     }
     if (insideRobot(p)) continue;
-    if (unexpected && !b.streak && colorReachesBeyondRim(i, judge)) continue;
+    if (unexpected && !b.streak && (!judge.hueClearlyBetweenPinkAndYellow(seen) || colorReachesBeyondRim(i, judge)))
+      continue;
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength)

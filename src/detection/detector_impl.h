@@ -122,11 +122,15 @@ struct Detector::Impl {
   // retained classes, which in a frame alone are the fixed references: a
   // pale rose dot reads as neither green nor pink against those). Robots
   // found so join `robots` with the nearer team color. Returns how many.
+  // Weak peaks are searched too, as centers beside a free side-colored
+  // blob that their pattern then holds.
   int searchAgainWithFrameColors();
   // Whether `seen` is nearer to this frame's yellow or blue than to any
   // other class it learned (clipped channels as ClippedColor reads them);
   // `team`, where given, is set to the nearer team.
   bool teamColored(const ClippedColor& seen, Team* team = nullptr) const;
+  // The same for green or pink: a marker of a robot's side.
+  bool sideColored(const ClippedColor& seen) const;
   // Robots whose center made no blob: the pixel stage's color gate judges
   // a center against the lines' white, and a pale center clipped in two
   // channels (sky blue in a sun patch, (150, 255, 255) beside lines of

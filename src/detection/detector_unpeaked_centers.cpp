@@ -17,13 +17,30 @@ constexpr double kThreeSidePenalty = 0.5;
 
 }  // namespace
 
-bool Detector::Impl::teamColored(const ClippedColor& seen, Team* team) const {
-  const float d_yellow = seen.distance(frame_color[kYellow]), d_blue = seen.distance(frame_color[kBlue]);
-  const float d_team = std::min(d_yellow, d_blue);
-  for (int k : {kGreen, kPink, kField, kWhite})
-    if (!(d_team < seen.distance(frame_color[k]))) return false;
-  if (team) *team = d_yellow <= d_blue ? Team::Yellow : Team::Blue;
+namespace {
+
+// Whether `seen` is nearer to class a or b of `colors` than to every other
+// class but orange; `nearer_a`: a is the nearer of the two.
+bool nearerToEither(const ClippedColor& seen, const ColorVec* colors, int a, int b, bool* nearer_a) {
+  const float d_a = seen.distance(colors[a]), d_b = seen.distance(colors[b]);
+  const float d = std::min(d_a, d_b);
+  for (int k : {kYellow, kBlue, kGreen, kPink, kField, kWhite})
+    if (k != a && k != b && !(d < seen.distance(colors[k]))) return false;
+  if (nearer_a) *nearer_a = d_a <= d_b;
   return true;
+}
+
+}  // namespace
+
+bool Detector::Impl::teamColored(const ClippedColor& seen, Team* team) const {
+  bool yellow = false;
+  if (!nearerToEither(seen, frame_color, kYellow, kBlue, &yellow)) return false;
+  if (team) *team = yellow ? Team::Yellow : Team::Blue;
+  return true;
+}
+
+bool Detector::Impl::sideColored(const ClippedColor& seen) const {
+  return nearerToEither(seen, frame_color, kGreen, kPink, nullptr);
 }
 
 int Detector::Impl::robotsAroundUnpeakedCenters() {
@@ -87,7 +104,11 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
   };
   add(a, sa);
   add(b, sb);
-  const PatternPose pair = fitPattern(pts, slot, 2, opt.score_scale);
+  // The tolerance the search fits with where the two sides' pattern lies
+  // (stretched in a grazing view).
+  const FitTolerance round{opt.score_scale};
+  const FitTolerance tol = search.fitToleranceAt(fitPattern(pts, slot, 2, round).position);
+  const PatternPose pair = fitPattern(pts, slot, 2, tol);
   // The other slots: the free blob nearest each, within the weak sides'
   // tolerance.
   for (int s = 1; s < kPatternSlots; ++s) {
@@ -103,7 +124,7 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
     if (best >= 0) add(best, s);
   }
   if (h.n - 1 < opt.min_side_blobs) return false;
-  h.pose = fitPattern(pts, slot, h.n - 1, opt.score_scale);
+  h.pose = fitPattern(pts, slot, h.n - 1, tol);
   if (h.pose.score < opt.min_weak_fit || overlapsAccepted(h.pose)) return false;
   // A center that peaked is the first search's to judge.
   for (const auto& hit : index.within(h.pose.position, RobotPatternGeometry::kCenterBlobRadius))

@@ -44,17 +44,19 @@ class HypothesisSearch {
   void find(const HypothesisInputs& in, std::vector<Hypothesis>& out);
   // Blob c's best hypothesis as a center (rank <= 0: none).
   Hypothesis bestAt(const HypothesisInputs& in, int c);
-
- private:
-  Hypothesis bestAt(int c);
-  const FrameBlob& blobAt(int i) const { return (*in_.blobs)[i]; }
-  float brightness(int i) const { return blobAt(i).brightness(); }
-
   // How closely blobs around `p` (search plane) must fit the pattern: the
   // score scale, stretched along the viewing ray where the camera sees the
   // field at a grazing angle (view_stretch.h; from the same stretch on where
   // the pixel stage whitens the gradient, so other views fit as before).
   FitTolerance fitToleranceAt(const FieldMm& p) const;
+  // A side blob a completion starts from lies this near (mm) the center's
+  // ring of side blobs.
+  static constexpr double kWeakPairRingTolerance = 15;
+
+ private:
+  Hypothesis bestAt(int c);
+  const FrameBlob& blobAt(int i) const { return (*in_.blobs)[i]; }
+  float brightness(int i) const { return blobAt(i).brightness(); }
 
   // Whether the camera sees any part of `area` stretched enough for
   // fitToleranceAt to stretch its tolerance, on a 100 mm lattice; a camera
@@ -153,9 +155,8 @@ class HypothesisSearch {
   static constexpr double kFourBlobPenalty = 0.5;  // rank factor for a missing side blob
   // Patterns completed with weak peaks rank this much lower per weak side.
   static constexpr double kWeakSideRankStep = 0.1;
-  // Two side blobs a weak completion starts from: their distance to the center
-  // blob (mm) and their angle around it (rad) near the pattern's.
-  static constexpr double kWeakPairRingTolerance = 15;
+  // Two side blobs a weak completion starts from: their angle around the
+  // center blob (rad) near the pattern's (their distance: kWeakPairRingTolerance).
   static constexpr double kWeakPairAngleTolerance = 0.35;
   // A robot cut by the image border (center and two side blobs, the other
   // two slots outside the image) ranks at this fraction of a three-side
