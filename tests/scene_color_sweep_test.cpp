@@ -359,6 +359,46 @@ const std::vector<Condition>& conditions() {
          s.lighting.uneven_ratio = 2.5;
          s.materials.pink = {250, 175, 205};
        }},
+      // --- more of both: very dark, blurred and noisy, the ball's lightest
+      // and reddest shades, vivid colors at gamma 1.4, a gray carpet under a
+      // magenta cast, a 25° tilt under a green cast
+      {"very_dark_noisy_tungsten", [](SceneSpec& s, int) {
+         cast(s, kTungsten, 0.9);
+         s.lighting.exposure = 0.35;
+         s.noise_sigma = 3;
+       }},
+      {"blur_noise_desaturated_pale_cold", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 0.6);
+         s.lens_blur_px = 1.2;
+         s.noise_sigma = 3;
+         patternColors(s, {240, 230, 120}, {110, 150, 230}, {130, 220, 140}, {245, 160, 210});
+       }},
+      {"light_orange_ball_cold_gamma_1.4", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 0.8, 1.4);
+         s.materials.ball = {255, 165, 60};
+       }},
+      {"red_orange_ball_green_cast_dim", [](SceneSpec& s, int) {
+         cast(s, {0.8, 1.3, 0.8}, 0.9);
+         s.lighting.exposure = 0.6;
+         s.materials.ball = {235, 65, 20};
+       }},
+      {"cold_saturation_1.3_gamma_1.4_magenta_teal", [](SceneSpec& s, int) {
+         cast(s, kColdLed, 1.3, 1.4);
+         s.materials.pink = {225, 30, 200};
+         s.materials.green = {40, 190, 170};
+       }},
+      {"magenta_cast_gray_carpet_amber_sky_blue", [](SceneSpec& s, int) {
+         cast(s, {1.2, 0.8, 1.2}, 0.8);
+         s.materials.carpet = {105, 105, 100};
+         s.materials.yellow = {250, 170, 20};
+         s.materials.blue = {90, 175, 245};
+       }},
+      {"tilt_25_green_cast_uneven_yellow_green", [](SceneSpec& s, int) {
+         s.cameras = {tiltedCamera(4000, 0.44, 1.0, 1750, 0.03)};
+         cast(s, {0.8, 1.3, 0.8}, 0.8);
+         s.lighting.uneven_ratio = 2.5;
+         s.materials.green = {150, 215, 40};
+       }},
       {"green_cast_navy_amber_dark_noisy", [](SceneSpec& s, int) {
          cast(s, {0.8, 1.3, 0.8}, 0.8);
          s.materials.blue = {20, 30, 125};
@@ -471,6 +511,18 @@ TEST(SceneColorSweepPalePink, ClippedPalePinkSplitFromTheRobotsOwnGreen) {
 // --gtest_also_run_disabled_tests, DV_SCENE_FULL=1 and DV_MISSES=1).
 const std::vector<Condition>& openConditions() {
   static const std::vector<Condition> list = {
+      // Tungsten with a sun patch (1.8) over the ball: the ball clips in
+      // red, (255, 209, 30), which is the color of the yellow centers that
+      // clip in red outside the patch (255, 210, 24): nearer to the yellow
+      // class than to any other, it is no ball (recall 0.000 at 1224 x 1024,
+      // 0.750 at 2448 x 2048). Only the light around it tells them apart
+      // (the ball's green is half the yellow's under the same light).
+      {"tungsten_sun_over_the_ball", [](SceneSpec& s, int) {
+         cast(s, kTungsten);
+         s.lighting.sun_patches = {{{-1500, 900}, 800, 500, 0.2, 1.8, 0.25}};
+         s.lighting.shadows = {{{-3000, -800}, 900, 500, -0.4, 0.45, 0.3}};
+         s.lighting.vignetting = 0.5;
+       }},
       // Cold LED over-exposed under 3:1 uneven light: in the brightest
       // corner the lines clip in all three channels, (255, 255, 255), so
       // the frame's white balance is unknown there, and a robot by the wall

@@ -200,7 +200,10 @@ int Detector::Impl::searchAgainWithFrameColors() {
     if (h.rank <= 0 || overlapsAccepted(h.pose)) return;
     bool free = true, side_blob = false, weak_side = false;
     for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
-    for (int i = 1; i < h.n; ++i) side_blob = side_blob || sideBlob(h.blob[i]), weak_side = weak_side || blobs[h.blob[i]].weak;
+    for (int i = 1; i < h.n; ++i) {
+      side_blob = side_blob || sideBlob(h.blob[i]);
+      weak_side = weak_side || blobs[h.blob[i]].weak;
+    }
     if (!free || (weak_center && (!side_blob || weak_side))) return;
     h.team = team;
     h.confidence = h.rank;

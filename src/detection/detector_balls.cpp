@@ -1,11 +1,15 @@
 #include "detection/ball_policy.h"
 #include "detection/ball_silhouette.h"
 #include "detection/detector_impl.h"
+#include "pipeline/view_stretch.h"
 
 namespace dv {
 
 namespace {
 
+// How far a thin line's demosaiced false colors move its mix with the
+// carpet: three of the least class radius (color_classes.h).
+constexpr float kThinLineColorReach = 3 * kMinClassRadius;
 // A border ball's strength: its fit's overlap (border_balls.h), full from
 // that of a disc cut cleanly by a line with a pixel of blur.
 constexpr double kBorderFullOverlap = 0.8;
@@ -101,6 +105,21 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.pos = p;
     c.streak = b.streak;
     const double temporal = temporalOf(c);
+    // An untracked streak on a goal's wall, or on a field marking in a color
+    // near the lines' mix with the carpet, is no ball: a thin line's
+    // demosaiced false colors (lines of 1 to 2 px at 1224 x 1024) make
+    // short chroma runs along it, and under tungsten a white line or wall
+    // mixed with the carpet looks like the ball mixed with it (a whole
+    // center circle of false balls wherever no round ball hid them, 13..16
+    // from the lines' mix; the goal posts' shaded faces 23..29; a fast ball
+    // kicked along the center line, 70). Only a track confirms it there.
+    // Not where the view is stretched: seen at a grazing angle a ball at
+    // rest is a streak itself (view_stretch.h).
+    if (b.streak && c.track < 0 && !seenStretched(p) &&
+        (onGoalWall(p) ||
+         (onMarking(p) &&
+          streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach)))
+      continue;
     c.confidence = color_conf * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
     c.rank = b.streak || strength_ref <= 0 ? c.confidence : color_conf * b.score / (0.4 * strength_ref) * temporal;
@@ -186,6 +205,19 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (px) d.pixel = *px;
     out.balls.push_back(d);
   }
+}
+
+bool Detector::Impl::onMarking(const FieldMm& p) const {
+  return field.distanceToMarkings(p) < opt.ball_radius + field.line_thickness / 2.0;
+}
+
+bool Detector::Impl::onGoalWall(const FieldMm& p) const {
+  return field.distanceToGoalWalls(p) < opt.ball_radius + FieldModel::kGoalWallThickness / 2;
+}
+
+bool Detector::Impl::seenStretched(const FieldMm& p) const {
+  double dir[2];
+  return viewStretch(camera, p, opt.ball_radius, dir) >= kMinStretch;
 }
 
 bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) const {

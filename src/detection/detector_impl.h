@@ -221,6 +221,12 @@ struct Detector::Impl {
   // the rim; a ball alone shows none). False where the frame is not at
   // hand.
   bool colorReachesBeyondRim(int i, const BallColorTest& judge) const;
+  // Whether `p` (ball plane) lies within a ball radius of a field marking's
+  // or of a goal wall's center line, and whether the camera sees it
+  // stretched (a grazing view, view_stretch.h).
+  bool onMarking(const FieldMm& p) const;
+  bool onGoalWall(const FieldMm& p) const;
+  bool seenStretched(const FieldMm& p) const;
   // This frame's colors for the ball's color judge (ball_color.h).
   FrameColors ball_colors;
 

@@ -1,5 +1,9 @@
 #include "geometry/field_model.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace dv {
 
 FieldModel FieldModel::divisionA() {
@@ -49,6 +53,45 @@ FieldRect FieldModel::withBoundary() const {
   const double x = field_length / 2.0 + boundary_width_goal_line;
   const double y = field_width / 2.0 + boundary_width;
   return {-x, x, -y, y};
+}
+
+double distanceToSegment(FieldMm p, FieldMm a, FieldMm b) {
+  const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+  const double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+}
+
+double FieldModel::distanceToMarkings(FieldMm p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const FieldLine& l : lines) best = std::min(best, distanceToSegment(p, l.p1, l.p2));
+  for (const FieldArc& a : arcs) {
+    // On the arc's span: the distance to its circle; else to its nearer end.
+    double angle = std::atan2(p.y - a.center.y, p.x - a.center.x) - a.a1;
+    double span = a.a2 - a.a1;
+    angle -= 2 * kPi * std::floor(angle / (2 * kPi));
+    span -= 2 * kPi * std::floor(span / (2 * kPi));
+    if (span == 0) span = 2 * kPi;
+    if (angle <= span) {
+      best = std::min(best, std::abs(std::hypot(p.x - a.center.x, p.y - a.center.y) - a.radius));
+    } else {
+      for (double e : {a.a1, a.a2})
+        best = std::min(best, std::hypot(p.x - a.center.x - a.radius * std::cos(e),
+                                         p.y - a.center.y - a.radius * std::sin(e)));
+    }
+  }
+  return best;
+}
+
+double FieldModel::distanceToGoalWalls(FieldMm p) const {
+  const double front = field_length / 2.0 + line_thickness / 2.0, back = front + goal_depth;
+  const double half = kGoalWallThickness / 2, gw = goal_width / 2.0 + half;
+  auto segment = [&](FieldMm a, FieldMm b) { return distanceToSegment(p, a, b); };
+  double best = std::numeric_limits<double>::infinity();
+  for (double sx : {-1.0, 1.0})
+    best = std::min({best, segment({sx * (back + half), -gw}, {sx * (back + half), gw}),
+                     segment({sx * front, gw}, {sx * (back + half), gw}),
+                     segment({sx * front, -gw}, {sx * (back + half), -gw})});
+  return best;
 }
 
 std::optional<FieldRect> FieldModel::cameraRegion(unsigned camera_id, unsigned num_cameras) const {

@@ -43,6 +43,9 @@ struct FieldArc {
   FieldShape type = FieldShape::Undefined;
 };
 
+// Distance (mm) from p to the segment ab.
+double distanceToSegment(FieldMm p, FieldMm a, FieldMm b);
+
 // An axis-parallel rectangle on the field.
 struct FieldRect {
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;
@@ -78,6 +81,16 @@ struct FieldModel {
 
   // The playing area plus the boundary up to the walls.
   FieldRect withBoundary() const;
+
+  // Distance (mm) from p to the nearest marking's center line (a line or
+  // an arc); infinity where there are none.
+  double distanceToMarkings(FieldMm p) const;
+
+  // The goals' walls (the rules: 20 mm thick; goal_depth from the goal
+  // line's outer edge to the back wall's inner face): the distance (mm)
+  // from p to the nearest wall's center line.
+  static constexpr double kGoalWallThickness = 20;
+  double distanceToGoalWalls(FieldMm p) const;
   // The part of the field a camera covers in SSL-Vision's default layout
   // (ids count along +y first, then +x). Empty for unsupported totals.
   std::optional<FieldRect> cameraRegion(unsigned camera_id, unsigned num_cameras) const;

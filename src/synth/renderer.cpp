@@ -22,7 +22,6 @@ constexpr double kRobotRadius = RobotPatternGeometry::kMaxRadius;  // 90 mm body
 // fit on the top; a few mm of black top beyond it, as on real robots.
 constexpr double kRobotFrontCut = 60;
 constexpr double kWallHeight = 100, kWallThickness = 50;
-constexpr double kGoalWallThickness = 20;
 constexpr double kFarDistance = 60000;  // mm; floor beyond this is "hall"
 constexpr double kLinePieceLength = 150;  // mm, line pieces binned per tile
 
@@ -261,7 +260,7 @@ struct Renderer::Impl {
     boxes.push_back({{r.x_min - t, r.y_min, 0}, {r.x_min, r.y_max, h}, m.wall});
     boxes.push_back({{r.x_max, r.y_min, 0}, {r.x_max + t, r.y_max, h}, m.wall});
     const FieldModel& f = spec.field;
-    const double gw = f.goal_width / 2.0, gh = f.goal_height, g = kGoalWallThickness;
+    const double gw = f.goal_width / 2.0, gh = f.goal_height, g = FieldModel::kGoalWallThickness;
     // goal_depth runs from the outer edge of the goal line to the inner back wall.
     const double front = f.field_length / 2.0 + f.line_thickness / 2.0;
     const double back = front + f.goal_depth;

@@ -30,11 +30,7 @@ bool insideWalls(const FieldModel& f, FieldMm p, double clearance) {
     return false;
   const double front = f.field_length / 2.0 + f.line_thickness / 2.0;
   const double back = front + f.goal_depth, gw = f.goal_width / 2.0;
-  auto segment = [&](FieldMm a, FieldMm b) {  // distance from p to segment ab
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
-    return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
-  };
+  auto segment = [&](FieldMm a, FieldMm b) { return distanceToSegment(p, a, b); };
   for (double sx : {-1.0, 1.0}) {
     if (segment({sx * back, -gw}, {sx * back, gw}) < clearance ||
         segment({sx * front, gw}, {sx * back, gw}) < clearance ||
