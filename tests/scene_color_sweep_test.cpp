@@ -514,8 +514,9 @@ const std::vector<Condition>& openConditions() {
       // Tungsten with a sun patch (1.8) over the ball: the ball clips in
       // red, (255, 209, 30), which is the color of the yellow centers that
       // clip in red outside the patch (255, 210, 24): nearer to the yellow
-      // class than to any other, it is no ball (recall 0.000 at 1224 x 1024,
-      // 0.750 at 2448 x 2048). Only the light around it tells them apart
+      // class than to any other, it is no ball (recall 0.000 at both sizes;
+      // 0.750 at 2448 x 2048 before untracked streaks on markings needed a
+      // color off the lines'). Only the light around it tells them apart
       // (the ball's green is half the yellow's under the same light).
       {"tungsten_sun_over_the_ball", [](SceneSpec& s, int) {
          cast(s, kTungsten);

@@ -115,10 +115,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // kicked along the center line, 70). Only a track confirms it there.
     // Not where the view is stretched: seen at a grazing angle a ball at
     // rest is a streak itself (view_stretch.h).
-    if (b.streak && c.track < 0 && !seenStretched(p) &&
+    if (b.streak && c.track < 0 &&
         (onGoalWall(p) ||
          (onMarking(p) &&
-          streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach)))
+          streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach)) &&
+        !seenStretched(p))
       continue;
     c.confidence = color_conf * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
