@@ -96,6 +96,11 @@ inline void printRow(const char* name, const char* res, const SceneScore& s) {
   std::printf("| %-26s | %s | %4d | %.3f | %.3f | %.3f | %.3f | %.3f | %3d | %.3f | %.3f |\n", name,
               res, s.truth_robots, s.recall(), s.precision(), s.idAccuracy(), s.detectableRecall(),
               s.fullPatternIdAccuracy(), s.truth_balls, s.ballRecall(), s.ballPrecision());
+  if (std::getenv("DV_MISSES") && !s.ball_err.empty()) {
+    std::vector<double> e = s.ball_err;
+    std::sort(e.begin(), e.end());
+    std::printf("  ball error: median %.2f mm, largest %.2f mm\n", e[e.size() / 2], e.back());
+  }
 }
 
 // Scores a condition (one placement at 1224 x 1024; DV_SCENE_FULL=1: 4 at

@@ -35,12 +35,9 @@ float BallColorJudge::explainedByNone(const ClippedColor& seen) const {
   const float* rgb = seen.rgb();
   if (!f_.seen[kYellow] || rgb[0] + rgb[1] + rgb[2] < min_brightness_) return 0;
   if (saturation(rgb) < kBallSaturationShare * saturation(f_.color[kYellow].c)) return 0;
-  const float h = colorHue(rgb, white_);
-  const float yellow = colorHue(f_.color[kYellow].c, white_);
-  const float pink = std::min(0.f, colorHue(f_.color[kPink].c, white_));
-  if (!(h > pink && h < yellow)) return 0;
-  const float hue_noise = std::atan2(kMinClassRadius, seen.distance(f_.color[kWhite]));
-  const bool redder_than_yellow = f_.white.valid && h < f_.yellow_hue_min - hue_noise;
+  const HueSpan hs = hueSpan(seen);
+  if (!(hs.hue > hs.pink && hs.hue < hs.yellow)) return 0;
+  const bool redder_than_yellow = f_.white.valid && hs.hue < f_.yellow_hue_min - hs.noise;
   float rel = std::numeric_limits<float>::max();
   for (int k : {kYellow, kPink, kWhite, kField}) {
     if (k == kYellow && redder_than_yellow) continue;
@@ -50,12 +47,18 @@ float BallColorJudge::explainedByNone(const ClippedColor& seen) const {
   return rel;
 }
 
+BallColorJudge::HueSpan BallColorJudge::hueSpan(const ClippedColor& seen) const {
+  HueSpan hs;
+  hs.hue = colorHue(seen.rgb(), white_);
+  hs.yellow = colorHue(f_.color[kYellow].c, white_);
+  hs.pink = std::min(0.f, colorHue(f_.color[kPink].c, white_));
+  hs.noise = std::atan2(kMinClassRadius, seen.distance(f_.color[kWhite]));
+  return hs;
+}
+
 bool BallColorJudge::hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) const {
-  const float h = colorHue(seen.rgb(), white_);
-  const float yellow = colorHue(f_.color[kYellow].c, white_);
-  const float pink = std::min(0.f, colorHue(f_.color[kPink].c, white_));
-  const float hue_noise = std::atan2(kMinClassRadius, seen.distance(f_.color[kWhite]));
-  return h > pink + hue_noise && h < yellow - hue_noise;
+  const HueSpan hs = hueSpan(seen);
+  return hs.hue > hs.pink + hs.noise && hs.hue < hs.yellow - hs.noise;
 }
 
 float BallColorJudge::distanceToOrange(const ClippedColor& seen, bool streak) const {

@@ -76,6 +76,13 @@ class BallColorJudge final : public BallColorTest {
 
  private:
   float explainedByNone(const ClippedColor& seen) const;
+  // A color's hue with this frame's pink and yellow hues (pink at most 0,
+  // red) and the hue its noise (kMinClassRadius) spans at its distance
+  // from the white, all under the lines' white.
+  struct HueSpan {
+    float hue, pink, yellow, noise;
+  };
+  HueSpan hueSpan(const ClippedColor& seen) const;
   float distanceToOrange(const ClippedColor& seen, bool streak) const;
   bool withinFieldReach(const ClippedColor& seen) const;
   float saturation(const float rgb[3]) const;  // under the lines' white

@@ -54,8 +54,12 @@ ColorVec pureChromaticity(const float rgb[3]) {
 // its chromaticity (which shading leaves) lies between the ball's core and
 // the carpet around it (carpet-colored samples, not a line or wall beside
 // the ball, where enough are), weighs blur on both rims alike. A sample
-// that is no mix of the two (a marker nearby) weighs nothing. (cu, cv) in: the
-// yes/no centroid; out: the weighted one, unless core or carpet is missing.
+// that is no mix of the two weighs nothing (a marker nearby), or all where
+// the test says it is the ball's (a ball clipped in its lit cap: its
+// unclipped shaded side lies off the mix of the cap with the carpet, and
+// left out it pulled the center 3 mm to the light at 2448 x 2048). (cu, cv)
+// in: the yes/no centroid; out: the weighted one, unless core or carpet is
+// missing.
 void softCentroid(const float* du, const float* dv, const ColorVec* color, const uint8_t* is_ball,
                   const uint8_t* is_carpet, int n, double r, double& cu, double& cv) {
   ColorVec core, carpet, around;
@@ -88,9 +92,12 @@ void softCentroid(const float* du, const float* dv, const ColorVec* color, const
       if (sq(du[k] - cu) + sq(dv[k] - cv) > sq(window)) continue;
       float along = 0, off2 = 0;
       for (int i = 0; i < 3; ++i) along += (color[k].c[i] - carpet.c[i]) * axis[i];
-      const float a = std::clamp(along / len2, 0.f, 1.f);
+      float a = std::clamp(along / len2, 0.f, 1.f);
       for (int i = 0; i < 3; ++i) off2 += sq(color[k].c[i] - carpet.c[i] - a * axis[i]);
-      if (off2 > sq(kMaxOffMix) * len2) continue;
+      if (off2 > sq(kMaxOffMix) * len2) {
+        if (!is_ball[k]) continue;
+        a = 1;
+      }
       su += a * du[k], sv += a * dv[k], sw += a;
     }
     if (sw <= 0) return;

@@ -11,6 +11,7 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   robots.reserve(64);
   robot_positions.reserve(64);
   ball_cands.reserve(1024);
+  marker_colored.reserve(1024);
   border_balls.reserve(64);
   samples.reserve(512);
   labels.reserve(512);

@@ -1,6 +1,7 @@
 #include "detection/ball_policy.h"
 #include "detection/ball_silhouette.h"
 #include "detection/detector_impl.h"
+#include "detection/marker_colored_ball.h"
 #include "pipeline/view_stretch.h"
 
 namespace dv {
@@ -14,7 +15,19 @@ constexpr float kThinLineColorReach = 3 * kMinClassRadius;
 // that of a disc cut cleanly by a line with a pixel of blur.
 constexpr double kBorderFullOverlap = 0.8;
 
+// A round blob's strength: its score against a share of the frame's robot
+// blobs' median score (1 where no robot gives one).
+double blobStrength(double score, double strength_ref) {
+  return strength_ref > 0 ? std::min(1.0, score / (0.4 * strength_ref)) : 1.0;
+}
+
 }  // namespace
+
+double Detector::Impl::ballTemporal(BallCandidate& c, bool tracking) {
+  if (!tracking || !have_frame || new_scene) return 1.0;
+  ball_tracker.match(c);
+  return c.track >= 0 ? 1.0 : 0.85;
+}
 
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
@@ -65,14 +78,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     return false;
   };
-  // Temporal consistency: the ball track it continues, if any.
-  auto temporalOf = [&](BallCandidate& c) {
-    if (!tracking || !have_frame || new_scene) return 1.0;
-    ball_tracker.match(c);
-    return c.track >= 0 ? 1.0 : 0.85;
-  };
   ColorVec field_sum;
   int field_n = 0;
+  marker_colored.clear();
   const double margin = 50;
   for (int i = 0; i < n_strong; ++i) {  // never a weak peak
     const FrameBlob& b = blobs[i];
@@ -90,6 +98,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
         ++field_n;
+      } else if (!b.streak && (nearest_neg == kYellow || nearest_neg == kPink) && !insideRobot(p)) {
+        marker_colored.push_back({i, nearest_neg});
       }
       continue;
     }
@@ -98,13 +108,12 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
-        b.streak ? std::min(1.0, b.score / kStreakFullStrength)
-                 : (strength_ref > 0 ? std::min(1.0, b.score / (0.4 * strength_ref)) : 1.0);
+        b.streak ? std::min(1.0, b.score / kStreakFullStrength) : blobStrength(b.score, strength_ref);
     BallCandidate c;
     c.blob = i;
     c.pos = p;
     c.streak = b.streak;
-    const double temporal = temporalOf(c);
+    const double temporal = ballTemporal(c, tracking);
     // An untracked streak on a goal's wall, or on a field marking in a color
     // near the lines' mix with the carpet, is no ball: a thin line's
     // demosaiced false colors (lines of 1 to 2 px at 1224 x 1024) make
@@ -145,7 +154,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       return false;
     };
     if (bb.whole && blobNear()) continue;
-    c.confidence = color_conf * std::min(1.0, bb.overlap / kBorderFullOverlap) * temporalOf(c);
+    c.confidence = color_conf * std::min(1.0, bb.overlap / kBorderFullOverlap) * ballTemporal(c, tracking);
     c.rank = c.confidence;
     if (c.confidence < opt.min_ball_confidence) continue;
     ball_cands.erase(std::remove_if(ball_cands.begin(), ball_cands.end(),
@@ -156,6 +165,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
                      ball_cands.end());
     ball_cands.push_back(c);
   }
+  const bool marker_colored_ball = ball_cands.empty();
+  if (marker_colored_ball) addMarkerColoredBalls(judge, strength_ref, tracking);
   selectBalls(ball_cands, opt.ball_radius, opt.max_balls);
 
   // Learn orange from a convincing ball, the field from the clutter.
@@ -163,8 +174,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   const float fr = static_cast<float>(opt.reference_force);
   // (A streak's color is diluted by the carpet it passed over; a border
   // ball's is its visible part's, judged by pixels.)
+  // (A ball in a marker's color is no sample of orange.)
   if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && ball_cands[0].blob >= 0 &&
-      !ball_cands[0].streak)
+      !ball_cands[0].streak && !marker_colored_ball)
     classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
   if (field_n > 0) {
     for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
@@ -196,8 +208,14 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // blur is no whole ball's silhouette and keeps its middle.
     if (px && frame_view.image) {
       const double r = ballRadiusPx(camera, {c.pos.x, c.pos.y, opt.ball_radius}, opt.ball_radius);
+      int cls = -1;
+      if (marker_colored_ball)
+        for (const auto& m : marker_colored)
+          if (m.blob == c.blob) cls = m.cls;
+      const MarkerColoredBallTest marker_test(ball_colors, judge, cls);
+      const BallColorTest& test = cls >= 0 ? static_cast<const BallColorTest&>(marker_test) : judge;
       ImagePx refined;
-      if (ballSilhouetteCenter(frame_view, judge, *px, r, refined)) px = refined;
+      if (ballSilhouetteCenter(frame_view, test, *px, r, refined)) px = refined;
     }
     std::optional<FieldPoint> fp3;
     if (px) fp3 = camera.imageToField(*px, opt.ball_radius);
@@ -221,14 +239,42 @@ bool Detector::Impl::seenStretched(const FieldMm& p) const {
   return viewStretch(camera, p, opt.ball_radius, dir) >= kMinStretch;
 }
 
-bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) const {
+bool Detector::Impl::ballInImage(int i, ImagePx& px, double& radius_px) const {
   if (!frame_view.image) return false;
   const FieldMm at_plane = raw_positions[i];
-  const auto px = camera.fieldToImage({at_plane.x, at_plane.y, plane_height});
-  if (!px) return false;
+  const auto seen = camera.fieldToImage({at_plane.x, at_plane.y, plane_height});
+  if (!seen) return false;
+  px = *seen;
   const FieldMm& p = blobs[i].at_ball;
-  const double r = ballRadiusPx(camera, {p.x, p.y, opt.ball_radius}, opt.ball_radius);
-  return ballColorBeyondRim(frame_view, judge, *px, r);
+  radius_px = ballRadiusPx(camera, {p.x, p.y, opt.ball_radius}, opt.ball_radius);
+  return true;
+}
+
+bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) const {
+  ImagePx px;
+  double r;
+  return ballInImage(i, px, r) && ballColorBeyondRim(frame_view, judge, px, r);
+}
+
+void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking) {
+  for (const auto& m : marker_colored) {
+    const FrameBlob& b = blobs[m.blob];
+    const MarkerColoredBallTest test(ball_colors, judge, m.cls);
+    ImagePx px;
+    double r;
+    // Within the class's reach (a line's false colors, a mix with the
+    // carpet, are not), round and alone (no color of it beyond its rim),
+    // and most of what lies around it carpet, not a robot's top.
+    if (!test.isBall(b.rgb) || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
+    const double carpet = carpetAroundBall(frame_view, ball_colors, px, r, opt.ball_radius, b.brightness());
+    if (carpet < 0.5) continue;
+    BallCandidate c;
+    c.blob = m.blob;
+    c.pos = b.at_ball;
+    c.confidence = carpet * blobStrength(b.score, strength_ref) * ballTemporal(c, tracking);
+    c.rank = c.confidence;
+    if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
+  }
 }
 
 }  // namespace dv

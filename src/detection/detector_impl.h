@@ -221,6 +221,23 @@ struct Detector::Impl {
   // the rim; a ball alone shows none). False where the frame is not at
   // hand.
   bool colorReachesBeyondRim(int i, const BallColorTest& judge) const;
+  // Blob i seen as a ball: its place in the image (on the ball plane's
+  // image of its raw position) and the ball's radius there (px); false
+  // where the frame is not at hand or the camera does not see it.
+  bool ballInImage(int i, ImagePx& px, double& radius_px) const;
+  // Round blobs in a marker's color (yellow or pink) outside every robot,
+  // with that class: the ball where no blob or border fit of the ball's
+  // own colors is (marker_colored_ball.h). Appends those standing alone on
+  // the carpet to ball_cands.
+  struct MarkerColoredBlob {
+    int blob;
+    int cls;
+  };
+  std::vector<MarkerColoredBlob> marker_colored;
+  void addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking);
+  // The ball candidate's temporal consistency: 1 where it continues a ball
+  // track (or tracking is off), else less.
+  double ballTemporal(BallCandidate& c, bool tracking);
   // Whether `p` (ball plane) lies within a ball radius of a field marking's
   // or of a goal wall's center line, and whether the camera sees it
   // stretched (a grazing view, view_stretch.h).

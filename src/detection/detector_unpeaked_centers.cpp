@@ -15,10 +15,6 @@ constexpr double kUnpeakedCenterRankFactor = 0.8;
 // A rank factor for a missing side blob, as the hypothesis search's.
 constexpr double kThreeSidePenalty = 0.5;
 
-}  // namespace
-
-namespace {
-
 // Whether `seen` is nearer to class a or b of `colors` than to every other
 // class but orange; `nearer_a`: a is the nearer of the two.
 bool nearerToEither(const ClippedColor& seen, const ColorVec* colors, int a, int b, bool* nearer_a) {

@@ -1,0 +1,53 @@
+#include "detection/marker_colored_ball.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detection/clipped_color.h"
+#include "detection/frame_blob.h"
+#include "geometry/robot_pattern.h"
+
+namespace dv {
+
+using namespace color_class;
+
+namespace {
+// Midway between a center dot's rim and its side dots' inner rims (mm).
+constexpr double kRingMm = (RobotPatternGeometry::kCenterBlobRadius + RobotPatternGeometry::kSideBlobDistance -
+                            RobotPatternGeometry::kSideBlobRadius) /
+                           2;
+constexpr int kRingSamples = 24;
+}  // namespace
+
+bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
+  if (judge_.isBall(rgb)) return true;
+  const ClippedColor seen(rgb);
+  if (seen.saturated()) return false;
+  const float d = seen.distance(f_.color[k_]);
+  const float reach = std::max(kClassSpreads * f_.spread[k_], kMinClassRadius);
+  return d <= reach && d < seen.distance(f_.color[kField]);
+}
+
+double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
+                        double ball_radius_mm, float brightness) {
+  if (!frame.image || frame.image->empty()) return 0;
+  const double w = frame.image->cols, h = frame.image->rows, r = kRingMm / ball_radius_mm * radius_px;
+  int carpet = 0;
+  for (int i = 0; i < kRingSamples; ++i) {
+    const double a = 2 * kPi * i / kRingSamples;
+    const double u = center.u + r * std::cos(a), v = center.v + r * std::sin(a);
+    if (u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
+    float rgb[3];
+    frameRgbAt(frame, u, v, rgb);
+    if (rgb[0] + rgb[1] + rgb[2] < kTopBrightness * brightness) continue;
+    const ClippedColor seen(rgb);
+    int nearest = kField;
+    for (int k = 0; k < kNumClasses; ++k)
+      if (k != kGreen && colors.seen[k] && seen.distance(colors.color[k]) < seen.distance(colors.color[nearest]))
+        nearest = k;
+    carpet += nearest == kField;
+  }
+  return static_cast<double>(carpet) / kRingSamples;
+}
+
+}  // namespace dv

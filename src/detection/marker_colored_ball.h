@@ -1,0 +1,48 @@
+#pragma once
+// A ball whose color this frame's classes take for a marker's. Under a
+// strong light (a sun patch over tungsten) the ball clips in red to the
+// very color of the yellow centers that clip outside it, (255, 209, 30)
+// against (255, 210, 24); a pale orange may likewise lie within pink's
+// reach. Color alone cannot tell them apart, but where they lie can: a
+// center or side dot sits on a robot's top, the ball on the carpet. So a
+// round blob of a marker's color, outside every robot, standing alone on
+// the carpet, is the ball where the frame shows no ball of the ball's own
+// colors. Its silhouette is judged by that marker's class as well as the
+// ball's own colors (its shaded side, unclipped, is orange), so it is
+// centered like any ball.
+#include "detection/ball_color.h"
+#include "detection/seen_color.h"
+
+namespace dv {
+
+// Ball-colored: as the frame's judge says, or within the reach of one
+// marker class of this frame (and nearer to it than to the carpet); carpet:
+// as the judge says.
+class MarkerColoredBallTest final : public BallColorTest {
+ public:
+  MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class)
+      : f_(frame), judge_(judge), k_(marker_class) {}
+  bool isBall(const float rgb[3]) const override;
+  bool isCarpet(const float rgb[3]) const override { return judge_.isCarpet(rgb); }
+
+ private:
+  const FrameColors& f_;
+  const BallColorTest& judge_;
+  int k_;
+};
+
+// The share (0..1) of a ring around a ball at `center` (image px, radius
+// `radius_px`, `ball_radius_mm` on the field, brightness r + g + b
+// `brightness`) that shows carpet: the ring lies where, around a center
+// dot, the robot's top shows between it and its side dots (35 mm out, a
+// ball radius and a half). A sample is carpet where the field is its
+// nearest class of the frame but green (not within the field's reach: a
+// sun patch lights the carpet around such a ball, and under gamma more
+// light moves its chromaticity toward green's, 15 apart under tungsten;
+// green dots lie beyond the ring) and it is no darker than a robot's top
+// may be beside its markers (kTopBrightness). Samples beyond the image
+// count as no carpet.
+double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
+                        double ball_radius_mm, float brightness);
+
+}  // namespace dv

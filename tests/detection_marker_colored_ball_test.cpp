@@ -1,0 +1,87 @@
+// A ball in a marker's color (marker_colored_ball.h) on painted images: a
+// yellow disc alone on the carpet stands on carpet all round, a yellow
+// center dot on a robot's dark top does not; the ball's own colors and its
+// marker class both count as the ball's.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "detection/marker_colored_ball.h"
+
+namespace dv {
+namespace {
+
+using namespace color_class;
+
+// Painted colors (RGB), and the frame's classes learned from them.
+constexpr float kCarpet[3] = {50, 110, 40}, kYellowDot[3] = {240, 210, 20}, kTop[3] = {25, 25, 25},
+                kOrangeBall[3] = {230, 110, 30}, kLine[3] = {230, 230, 230}, kGreenDot[3] = {60, 190, 60},
+                kPinkDot[3] = {230, 60, 140}, kBlueDot[3] = {30, 60, 200};
+
+cv::Scalar bgr(const float rgb[3]) { return cv::Scalar(rgb[2], rgb[1], rgb[0]); }
+ColorVec feature(const float rgb[3]) { return colorFeature(rgb[0], rgb[1], rgb[2]); }
+
+FrameColors paintedColors() {
+  FrameColors f;
+  const float* rgb[kNumClasses] = {kYellowDot, kBlueDot, kGreenDot, kPinkDot, kOrangeBall, kCarpet, kLine};
+  for (int k = 0; k < kNumClasses; ++k) f.color[k] = feature(rgb[k]), f.spread[k] = 2, f.seen[k] = true;
+  return f;
+}
+
+// The frame's judge for the test's purpose: orange is the ball's, the
+// field's class the carpet.
+class OrangeOnly final : public BallColorTest {
+ public:
+  bool isBall(const float rgb[3]) const override { return colorDistance(feature(rgb), feature(kOrangeBall)) < 8; }
+  bool isCarpet(const float rgb[3]) const override { return colorDistance(feature(rgb), feature(kCarpet)) < 8; }
+};
+
+constexpr double kBallRadiusMm = 21.5, kRadiusPx = 8;
+const ImagePx kCenter{100, 100};
+
+cv::Mat carpet() { return cv::Mat(200, 200, CV_8UC3, bgr(kCarpet)); }
+
+TEST(MarkerColoredBall, AYellowDiscAloneOnTheCarpetStandsOnCarpet) {
+  cv::Mat image = carpet();
+  cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kYellowDot), cv::FILLED, cv::LINE_AA);
+  const FrameView frame{&image, BayerPattern::None};
+  const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
+  EXPECT_EQ(carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+}
+
+TEST(MarkerColoredBall, ACenterDotOnARobotsTopStandsOnNoCarpet) {
+  // A robot's top (85 mm, about 4 ball radii) around a yellow center dot.
+  cv::Mat image = carpet();
+  cv::circle(image, {100, 100}, static_cast<int>(85 / kBallRadiusMm * kRadiusPx), bgr(kTop), cv::FILLED);
+  cv::circle(image, {100, 100}, static_cast<int>(25 / kBallRadiusMm * kRadiusPx), bgr(kYellowDot), cv::FILLED);
+  const FrameView frame{&image, BayerPattern::None};
+  const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
+  EXPECT_EQ(carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+}
+
+TEST(MarkerColoredBall, ALineBesideTheBallLeavesMostOfItsRingOnCarpet) {
+  cv::Mat image = carpet();
+  cv::line(image, {0, 114}, {199, 114}, bgr(kLine), 3);
+  cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kYellowDot), cv::FILLED, cv::LINE_AA);
+  const FrameView frame{&image, BayerPattern::None};
+  const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
+  const double share = carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness);
+  EXPECT_GT(share, 0.5);
+  EXPECT_LT(share, 1.0);
+}
+
+TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {
+  const FrameColors colors = paintedColors();
+  const OrangeOnly judge;
+  const MarkerColoredBallTest yellow(colors, judge, kYellow);
+  EXPECT_TRUE(yellow.isBall(kYellowDot));
+  EXPECT_TRUE(yellow.isBall(kOrangeBall));
+  EXPECT_FALSE(yellow.isBall(kCarpet));
+  EXPECT_FALSE(yellow.isBall(kPinkDot));
+  // A pale yellow (a line's false color) lies beyond the class's reach.
+  const float pale[3] = {205, 205, 110};
+  EXPECT_FALSE(yellow.isBall(pale));
+}
+
+}  // namespace
+}  // namespace dv
