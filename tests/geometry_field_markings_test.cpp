@@ -2,6 +2,8 @@
 // the detector takes no untracked fast-ball streak there.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "geometry/field_model.h"
 
 namespace dv {
@@ -14,6 +16,20 @@ TEST(FieldMarkings, DistanceToTheNearestLineOrArc) {
   EXPECT_NEAR(f.distanceToMarkings({-300, 400}), 0, 1e-9);             // on the center circle (radius 500)
   EXPECT_NEAR(f.distanceToMarkings({-1000, 1500}), 1000, 1e-9);        // midway: the halfway line is nearest
   EXPECT_NEAR(f.distanceToMarkings({-4000, -2000}), 500, 1e-9);        // the goal line
+}
+
+// A geometry packet carries the center circle's a2 as a float, 6.28318548,
+// just above the double 2 pi: still the whole circle (read modulo 2 pi it
+// spanned 2e-7 rad, and the center circle was a point at its a1).
+TEST(FieldMarkings, AFloatFullCircleIsTheWholeCircle) {
+  FieldModel f = FieldModel::divisionB();
+  for (FieldArc& a : f.arcs) a.a2 = static_cast<float>(a.a2);
+  EXPECT_NEAR(f.distanceToMarkings({-353, -353}), 500 - std::hypot(353, 353), 1e-6);
+  EXPECT_NEAR(f.distanceToMarkings({-300, -400 * 1.04}), std::hypot(300, 416) - 500, 1e-6);
+  FieldArc half{"", {0, 0}, 500, 0, kPi};
+  EXPECT_NEAR(half.span(), kPi, 1e-12);
+  half.a2 = -kPi / 2;  // wraps once: three quarters
+  EXPECT_NEAR(half.span(), 1.5 * kPi, 1e-12);
 }
 
 TEST(FieldMarkings, DistanceToTheGoalWallsCenterLines) {

@@ -78,8 +78,8 @@ void drawFieldLines(cv::Mat& img, const View& view, const FieldModel& field) {
     polyline(pts);
   }
   for (const FieldArc& a : field.arcs) {
-    const double span = a.a2 - a.a1;
-    const int n = std::max(8, static_cast<int>(std::abs(span) * a.radius / 50) + 1);
+    const double span = a.span();
+    const int n = std::max(8, static_cast<int>(span * a.radius / 50) + 1);
     std::vector<FieldMm> pts;
     for (int i = 0; i <= n; ++i) {
       const double t = a.a1 + span * i / n;

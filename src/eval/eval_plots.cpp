@@ -38,8 +38,7 @@ void writeFieldMap(const std::string& path, const std::vector<Miss>& misses) {
   };
   for (const FieldLine& l : field.lines) cv::line(img, px(l.p1.x, l.p1.y), px(l.p2.x, l.p2.y), {235, 235, 235}, 2);
   for (const FieldArc& a : field.arcs) {
-    double span = a.a2 - a.a1;
-    if (span <= 0) span += 2 * kPi;
+    const double span = a.span();
     for (int i = 0; i < 64; ++i) {
       const double t0 = a.a1 + span * i / 64, t1 = a.a1 + span * (i + 1) / 64;
       cv::line(img, px(a.center.x + a.radius * std::cos(t0), a.center.y + a.radius * std::sin(t0)),

@@ -67,11 +67,8 @@ double FieldModel::distanceToMarkings(FieldMm p) const {
   for (const FieldArc& a : arcs) {
     // On the arc's span: the distance to its circle; else to its nearer end.
     double angle = std::atan2(p.y - a.center.y, p.x - a.center.x) - a.a1;
-    double span = a.a2 - a.a1;
     angle -= 2 * kPi * std::floor(angle / (2 * kPi));
-    span -= 2 * kPi * std::floor(span / (2 * kPi));
-    if (span == 0) span = 2 * kPi;
-    if (angle <= span) {
+    if (angle <= a.span()) {
       best = std::min(best, std::abs(std::hypot(p.x - a.center.x, p.y - a.center.y) - a.radius));
     } else {
       for (double e : {a.a1, a.a2})

@@ -1,6 +1,7 @@
 #pragma once
 // The SSL field (SSL_GeometryFieldSize): scalar dimensions plus the painted
 // line segments and arcs, in millimetres in the SSL field frame.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,15 @@ struct FieldArc {
   double a1 = 0, a2 = 0;  // rad, counter-clockwise from +x
   double thickness = 10;
   FieldShape type = FieldShape::Undefined;
+
+  // The angle it spans counter-clockwise from a1, in (0, 2 pi]: a2 <= a1
+  // wraps once, and anything from 2 pi on is the whole circle (a geometry
+  // packet's float 2 pi, 6.28318548, lies just above the double).
+  double span() const {
+    double s = a2 - a1;
+    if (s <= 0) s += 2 * kPi;
+    return std::min(s, 2 * kPi);
+  }
 };
 
 // Distance (mm) from p to the segment ab.

@@ -74,8 +74,7 @@ BlobColorGate::BlobColorGate(const CameraModel& camera, const FieldModel& field)
       add(l.p1.x + (l.p2.x - l.p1.x) * i / n, l.p1.y + (l.p2.y - l.p1.y) * i / n, side * nx, side * ny);
   }
   for (const FieldArc& a : field.arcs) {
-    double span = a.a2 - a.a1;
-    if (span <= 0) span += 2 * kPi;
+    const double span = a.span();
     const int n = std::max(1, static_cast<int>(span * a.radius / kLineStepMm));
     for (int i = 0; i <= n; ++i, side = -side) {
       const double t = a.a1 + span * i / n;

@@ -236,9 +236,7 @@ struct Renderer::Impl {
     }
     for (const FieldArc& a : spec.field.arcs) {
       double a0 = std::remainder(a.a1, 2 * kPi);
-      double span = a.a2 - a.a1;
-      if (span < 0) span += 2 * kPi;
-      span = std::min(span, 2 * kPi);
+      const double span = a.span();
       const int n = std::max(1, int(std::ceil(span * a.radius / kLinePieceLength)));
       for (int i = 0; i < n; ++i) {
         LinePiece p;
