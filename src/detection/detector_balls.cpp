@@ -104,15 +104,32 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     }
     if (insideRobot(p)) continue;
-    if (unexpected && !b.streak && (!judge.hueClearlyBetweenPinkAndYellow(seen) || colorReachesBeyondRim(i, judge)))
-      continue;
+    // A round blob of a shade no class explains is a ball only where its
+    // color stays within one ball's rim (line crossings run on along their
+    // lines). A fast ball's does not: motion stretches it, and the pixel
+    // stage hides the streak candidate behind the round blob (nearBlob,
+    // streak_score.h). So such a blob is judged as the streak it may be,
+    // by the ball's mix with the carpet and the streak rules below (H.265 at
+    // 5 Mbit/s lost the first frame's ball, kicked at 6 m/s, its chroma
+    // washed out to (182, 110, 52), nearer to yellow than to orange).
+    bool streak = b.streak;
+    double color_conf_used = color_conf;
+    if (unexpected && !b.streak) {
+      if (!judge.hueClearlyBetweenPinkAndYellow(seen)) continue;
+      if (colorReachesBeyondRim(i, judge)) {
+        const double as_streak = judge.confidence(seen, true);
+        if (as_streak <= 0) continue;
+        streak = true;
+        color_conf_used = as_streak;
+      }
+    }
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength) : blobStrength(b.score, strength_ref);
     BallCandidate c;
     c.blob = i;
     c.pos = p;
-    c.streak = b.streak;
+    c.streak = streak;
     const double temporal = ballTemporal(c, tracking);
     // An untracked streak on a goal's wall, or on a field marking in a color
     // near the lines' mix with the carpet, is no ball: a thin line's
@@ -124,15 +141,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // kicked along the center line, 70). Only a track confirms it there.
     // Not where the view is stretched: seen at a grazing angle a ball at
     // rest is a streak itself (view_stretch.h).
-    if (b.streak && c.track < 0 &&
+    if (streak && c.track < 0 &&
         (onGoalWall(p) ||
          (onMarking(p) &&
           streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach)) &&
         !seenStretched(p))
       continue;
-    c.confidence = color_conf * strength * temporal;
+    c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
-    c.rank = b.streak || strength_ref <= 0 ? c.confidence : color_conf * b.score / (0.4 * strength_ref) * temporal;
+    c.rank = streak || strength_ref <= 0 ? c.confidence : color_conf_used * b.score / (0.4 * strength_ref) * temporal;
     if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
   }
   // Balls cut by the image border, which make no blob (border_balls.h).
