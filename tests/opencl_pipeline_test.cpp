@@ -508,7 +508,7 @@ TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
   std::vector<float> pairs(2 * coarse), score(lattice);
   std::vector<uint8_t> orientation(lattice);
   streakCoarseRows(oa.data(), ob.data(), w, sw, pairs.data(), 0, sw.coarse_height);
-  streakScoreRows(pairs.data(), sw, score.data(), orientation.data(), 0, sw.lattice_height);
+  streakScoreRows(pairs.data(), sw, e.lastStreakLevels(), score.data(), orientation.data(), 0, sw.lattice_height);
   EXPECT_TRUE(e.readStreakScore() == score) << "streak score differs";
 
   int streaks = 0;

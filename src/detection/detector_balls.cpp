@@ -1,3 +1,5 @@
+#include <optional>
+
 #include "detection/ball_policy.h"
 #include "detection/ball_silhouette.h"
 #include "detection/detector_impl.h"
@@ -16,9 +18,14 @@ constexpr float kThinLineColorReach = 3 * kMinClassRadius;
 constexpr double kBorderFullOverlap = 0.8;
 
 // A round blob's strength: its score against a share of the frame's robot
-// blobs' median score (1 where no robot gives one).
+// blobs' median score, unclamped (for ranking); 1 where no robot gives one.
+constexpr double kBlobFullStrengthShare = 0.4;
+double blobStrengthRatio(double score, double strength_ref) {
+  return strength_ref > 0 ? score / (kBlobFullStrengthShare * strength_ref) : 1.0;
+}
+// The same, full from that share on.
 double blobStrength(double score, double strength_ref) {
-  return strength_ref > 0 ? std::min(1.0, score / (0.4 * strength_ref)) : 1.0;
+  return std::min(1.0, blobStrengthRatio(score, strength_ref));
 }
 
 }  // namespace
@@ -149,7 +156,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       continue;
     c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
-    c.rank = streak || strength_ref <= 0 ? c.confidence : color_conf_used * b.score / (0.4 * strength_ref) * temporal;
+    c.rank = streak ? c.confidence : color_conf_used * blobStrengthRatio(b.score, strength_ref) * temporal;
     if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
   }
   // Balls cut by the image border, which make no blob (border_balls.h).
@@ -225,12 +232,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // blur is no whole ball's silhouette and keeps its middle.
     if (px && frame_view.image) {
       const double r = ballRadiusPx(camera, {c.pos.x, c.pos.y, opt.ball_radius}, opt.ball_radius);
-      int cls = -1;
+      std::optional<MarkerColoredBallTest> marker_test;
       if (marker_colored_ball)
         for (const auto& m : marker_colored)
-          if (m.blob == c.blob) cls = m.cls;
-      const MarkerColoredBallTest marker_test(ball_colors, judge, cls);
-      const BallColorTest& test = cls >= 0 ? static_cast<const BallColorTest&>(marker_test) : judge;
+          if (m.blob == c.blob) marker_test.emplace(ball_colors, judge, m.cls);
+      const BallColorTest& test = marker_test ? static_cast<const BallColorTest&>(*marker_test) : judge;
       ImagePx refined;
       if (ballSilhouetteCenter(frame_view, test, *px, r, refined)) px = refined;
     }

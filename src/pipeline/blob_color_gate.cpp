@@ -31,6 +31,22 @@ constexpr double kScaleQuantile = 0.9;
 // a frame desaturated to 0.4 (dots 0.25..0.4, crossings below 0.08).
 constexpr float kScaleShare = 0.3f;
 constexpr int kMaxPeaksForScale = 2048;
+// Colored strong peaks needed for a marker contrast: one robot's pattern.
+constexpr int kMinMarkersForContrast = 4;
+// Lines read this bright in a channel are clipped there. Clipped in two or
+// three, their color says nothing of the cast (under tungsten at exposure
+// 1.5 and 3:1 uneven light the lit lines read 255, 255, 255 while the
+// shaded touch line reads 158, 136, 65, the ball's hue), and the frame's
+// colors have no known scale for the fast-ball pass. One clipped channel
+// (a cold cast's blue) leaves the other two to tell.
+constexpr float kLineClipLevel = 250;
+
+// The kScaleQuantile quantile of v (reordered).
+float quantile(std::vector<float>& v) {
+  const size_t q = std::min(v.size() - 1, static_cast<size_t>(kScaleQuantile * v.size()));
+  std::nth_element(v.begin(), v.begin() + q, v.end());
+  return v[q];
+}
 
 // The co-sited color of the 2x2 cell under image position p.
 void pixelRgb(const cv::Mat& raw, BayerPattern bayer, const ImagePx& p, float rgb[3]) {
@@ -96,12 +112,16 @@ BlobColorGate::BlobColorGate(const CameraModel& camera, const FieldModel& field)
   order_.resize(points_.size());
   rgb_.resize(3 * points_.size());
   peak_saturation_.reserve(kMaxPeaksForScale);
+  peak_contrast_.reserve(kMaxPeaksForScale);
+  scratch_.reserve(kMaxPeaksForScale);
   threshold_ = kMinBlobSaturation;
 }
 
 void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
   neutral_ = {};
   line_saturation_ = 0;
+  carpet_valid_ = false;
+  lines_clipped_ = false;
   gain_[0] = gain_[1] = gain_[2] = 1;
   const int n = static_cast<int>(points_.size());
   if (n == 0 || raw.empty()) return;
@@ -144,16 +164,19 @@ void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
     neutral_.rgb[k] = order_[m / 2];
     neutral_.samples = m;
   }
+  lines_clipped_ = (neutral_.rgb[0] >= kLineClipLevel) + (neutral_.rgb[1] >= kLineClipLevel) +
+                       (neutral_.rgb[2] >= kLineClipLevel) >= 2;
   const float lo = std::min({neutral_.rgb[0], neutral_.rgb[1], neutral_.rgb[2]});
   if (lo < 1) return;  // a channel missing: no white balance can be read
   // The carpet beside the lines, per channel the median.
   for (int i = 0; i < n; ++i) pixelRgb(raw, bayer, carpet_[i], &rgb_[3 * i]);
-  float carpet[3];
+  float* carpet = carpet_rgb_;
   for (int k = 0; k < 3; ++k) {
     for (int i = 0; i < n; ++i) order_[i] = rgb_[3 * i + k];
     std::nth_element(order_.begin(), order_.begin() + n / 2, order_.begin() + n);
     carpet[k] = order_[n / 2];
   }
+  carpet_valid_ = true;
   if (neutral_.rgb[0] + neutral_.rgb[1] + neutral_.rgb[2] < kMinLineContrast * (carpet[0] + carpet[1] + carpet[2]))
     return;
   neutral_.valid = true;
@@ -168,6 +191,9 @@ void BlobColorGate::measureNeutral(const cv::Mat& raw, BayerPattern bayer) {
 void BlobColorGate::adoptNeutral(const BlobColorGate& other) {
   neutral_ = other.neutral_;
   line_saturation_ = other.line_saturation_;
+  carpet_valid_ = other.carpet_valid_;
+  lines_clipped_ = other.lines_clipped_;
+  for (int k = 0; k < 3; ++k) carpet_rgb_[k] = other.carpet_rgb_[k];
   for (int k = 0; k < 3; ++k) gain_[k] = other.gain_[k];
 }
 
@@ -178,17 +204,28 @@ float BlobColorGate::saturation(const float rgb[3]) const {
 }
 
 void BlobColorGate::addPeak(const float rgb[3]) {
-  if (static_cast<int>(peak_saturation_.size()) < kMaxPeaksForScale) peak_saturation_.push_back(saturation(rgb));
+  if (static_cast<int>(peak_saturation_.size()) >= kMaxPeaksForScale) return;
+  peak_saturation_.push_back(saturation(rgb));
+  const float d[3] = {rgb[0] - carpet_rgb_[0], rgb[1] - carpet_rgb_[1], rgb[2] - carpet_rgb_[2]};
+  const float a = chroma_.a[0] * d[0] + chroma_.a[1] * d[1] + chroma_.a[2] * d[2];
+  const float b = chroma_.b[0] * d[0] + chroma_.b[1] * d[1] + chroma_.b[2] * d[2];
+  peak_contrast_.push_back(a * a + b * b);
 }
 
 void BlobColorGate::endPeaks() {
   // Without the lines the frame's neutral is unknown: the fixed gate.
   threshold_ = kMinBlobSaturation;
-  const int n = static_cast<int>(peak_saturation_.size());
-  if (n == 0 || !neutral_.valid) return;
-  const int q = std::min(n - 1, static_cast<int>(kScaleQuantile * n));
-  std::nth_element(peak_saturation_.begin(), peak_saturation_.begin() + q, peak_saturation_.end());
-  threshold_ = std::min(kMinBlobSaturation, std::max(line_saturation_, kScaleShare * peak_saturation_[q]));
+  marker_contrast_ = 0;
+  if (peak_saturation_.empty() || !neutral_.valid) return;
+  scratch_.assign(peak_saturation_.begin(), peak_saturation_.end());
+  threshold_ = std::min(kMinBlobSaturation, std::max(line_saturation_, kScaleShare * quantile(scratch_)));
+  // The marker contrast over the peaks that pass the gate (line crossings
+  // and gray features would pull it toward the carpet's own texture).
+  scratch_.clear();
+  for (size_t i = 0; i < peak_saturation_.size(); ++i)
+    if (peak_saturation_[i] >= threshold_) scratch_.push_back(peak_contrast_[i]);
+  if (carpet_valid_ && !lines_clipped_ && static_cast<int>(scratch_.size()) >= kMinMarkersForContrast)
+    marker_contrast_ = quantile(scratch_);
 }
 
 }  // namespace dv

@@ -14,6 +14,9 @@
 //    and carpet as read beside the lines) nor more than kMinBlobSaturation.
 //    A frame whose lines are not where the geometry puts them keeps the
 //    fixed kMinBlobSaturation.
+// The same peaks give the frame's marker contrast: how far, in the pixel
+// pipeline's chroma, its most colored blobs lie from the carpet (what the
+// fast-ball pass weighs a streak against, streak_windows.h).
 // Both backends judge their peaks with it. No allocation after construction.
 #include <opencv2/core.hpp>
 #include <vector>
@@ -22,6 +25,7 @@
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "pipeline/blob.h"
+#include "pipeline/kernels.h"
 #include "pipeline/pipeline_options.h"
 
 namespace dv {
@@ -30,6 +34,8 @@ class BlobColorGate {
  public:
   // Sample points along the field lines (z = 0) that the camera sees.
   BlobColorGate(const CameraModel& camera, const FieldModel& field);
+  // The pixel pipeline's chroma axes (dRGB unless set), for markerContrast.
+  void setChroma(const ChromaTransform& t) { chroma_ = t; }
 
   // First, per frame: the lines' color from `raw` (Bayer or BGR).
   void measureNeutral(const cv::Mat& raw, BayerPattern bayer);
@@ -37,7 +43,10 @@ class BlobColorGate {
   void adoptNeutral(const BlobColorGate& other);
   // Then the frame's saturation scale from its strong peaks' colors
   // (addPeak for each, strongest first), before any peak is judged.
-  void beginPeaks() { peak_saturation_.clear(); }
+  void beginPeaks() {
+    peak_saturation_.clear();
+    peak_contrast_.clear();
+  }
   void addPeak(const float rgb[3]);
   void endPeaks();
   // Whether a blob of mean color rgb is colored enough.
@@ -47,6 +56,16 @@ class BlobColorGate {
 
   const NeutralColor& neutral() const { return neutral_; }
   float threshold() const { return threshold_; }
+  // After endPeaks: the squared chroma distance (chroma axes, 0..255 rgb)
+  // from the carpet of the most colored of the frame's colored strong
+  // peaks; divided by the squared mean luma it is in the streak pass's
+  // units. 0 where the lines, the carpet or too few colored peaks were
+  // seen, or where the lines clip in two channels (their cast is then
+  // unknown).
+  float markerContrast() const { return marker_contrast_; }
+  // The carpet's saturation beside the lines (as saturation()); 0 where the
+  // lines or the carpet were not seen.
+  float carpetSaturation() const { return carpet_valid_ && neutral_.valid ? saturation(carpet_rgb_) : 0; }
   int linePoints() const { return static_cast<int>(points_.size()); }
 
  private:
@@ -56,6 +75,13 @@ class BlobColorGate {
   std::vector<float> rgb_;       // per sample (reused)
   std::vector<float> order_;     // brightness copy for the quantile (reused)
   std::vector<float> peak_saturation_;
+  std::vector<float> peak_contrast_;  // per peak, alongside peak_saturation_
+  std::vector<float> scratch_;  // for quantiles (reused)
+  ChromaTransform chroma_ = ChromaTransform::of(ColorSpace::DRGB);
+  float carpet_rgb_[3] = {0, 0, 0};  // median carpet beside the lines
+  bool carpet_valid_ = false;
+  bool lines_clipped_ = false;  // two channels of the lines' color at the sensor's top
+  float marker_contrast_ = 0;
   NeutralColor neutral_;
   float gain_[3] = {1, 1, 1};
   float threshold_ = 0;

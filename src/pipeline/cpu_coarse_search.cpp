@@ -105,6 +105,7 @@ void CpuPipeline::Impl::makeCoarse(const FieldModel& field, const ScoreWindows& 
   part_streaks.assign(pool.size(), {});
   for (auto& list : part_streaks) list.reserve(coarse_streaks * kStreakPeaksPerSearch);
   fine_streaks.reserve(coarse_streaks * kStreakPeaksPerSearch);
+  streak_later.reserve(std::max(streak_later.capacity(), fine_streaks.capacity()));
 }
 
 bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
@@ -204,6 +205,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
     color_gate.addPeak(found_rgb.back().data());
   }
   color_gate.endPeaks();
+  streak_levels = streakLevels(color_gate.markerContrast(), luma_mean);
   for (size_t i = 0; i < found_peaks.size(); ++i) {
     const FinePeakFound& f = found_peaks[i];
     const bool strong = f.ratio > threshold;
@@ -236,7 +238,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
       if (nearBlob(out.blobs, c, grid.scale, kStreakCandidateAtBlobMm)) continue;
       const size_t n = list.size();
       list.resize(n + kStreakPeaksPerSearch);
-      list.resize(n + fine_peaks[p].streaks(raw, gain, c, list.data() + n, kStreakPeaksPerSearch));
+      list.resize(n + fine_peaks[p].streaks(raw, gain, streak_levels, c, list.data() + n, kStreakPeaksPerSearch));
     }
   });
   fine_streaks.clear();
@@ -250,11 +252,14 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
                                    return a.peak.x == b.peak.x && a.peak.y == b.peak.y;
                                  }),
                      fine_streaks.end());
-  for (const FinePeak::Streak& s : fine_streaks) {
-    if (nearBlob(out.blobs, streakPeakCenter(streak, s.peak), grid.scale)) continue;
-    const Blob b = streakBlob(s.at, s.peak.score);
-    if (acceptStreakBlob(out.blobs, b, grid.scale, color_gate)) out.blobs.push_back(b);
-  }
+  takeStreaksMarkingsLast(
+      fine_streaks,
+      [&](const FinePeak::Streak& s, Blob& b) {
+        if (nearBlob(out.blobs, streakPeakCenter(streak, s.peak), grid.scale)) return false;
+        b = streakBlob(s.at, s.peak.score);
+        return true;
+      },
+      streak_markings, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
   out.neutral = color_gate.neutral();
   out.min_saturation = color_gate.threshold();
   times = coarse->times;

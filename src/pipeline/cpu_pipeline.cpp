@@ -43,6 +43,7 @@ CpuPipeline::Impl::Impl(const CameraModel& cam, const FieldModel& field, const P
   sample_step = lattice.step;
   grid = fixed_grid ? *fixed_grid : checkedGrid(camera, field, opt);
   chroma = ChromaTransform::of(opt.color);
+  color_gate.setChroma(chroma);
   const ScoreWindows w = scoreWindows(grid.scale, opt.score);
   gradient_scale = w.gradient_scale;
   quadrant_r = w.quadrant_radius;
@@ -87,6 +88,7 @@ CpuPipeline::Impl::Impl(const CameraModel& cam, const FieldModel& field, const P
   streak = streakWindows(grid.scale, grid.width, grid.height);
   {
     streak_mask = streakPeakMask(table.valid.data(), grid.width, grid.height, streak);
+    streak_markings = MarkingMask(camera, field, grid, opt.plane_height);
     const size_t coarse = static_cast<size_t>(streak.coarse_width) * streak.coarse_height;
     const size_t lattice = streak_mask.size();
     streak_coarse.assign(2 * coarse, 0);
@@ -98,6 +100,7 @@ CpuPipeline::Impl::Impl(const CameraModel& cam, const FieldModel& field, const P
   streak_candidates.assign(parts, std::vector<StreakPeak>(kMaxStreakCandidates));
   streak_counts.assign(parts, 0);
   streak_merged.reserve(static_cast<size_t>(kMaxStreakCandidates) * parts);
+  streak_later.reserve(static_cast<size_t>(kMaxStreakCandidates) * parts);
   // Room for candidates that the ratio test removes afterwards.
   const int capacity = 4 * std::max(16, opt.max_blobs + weakCapacity());
   candidates.assign(parts, std::vector<PeakCandidate>(capacity));
@@ -342,25 +345,13 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
     }
   };
 
-  // Banded frames: the peaks the pass found, finished on the pool together
-  // with the fast-ball score (which needs only the coarse rows the pass
-  // made). Their lists in band order are the scan's in row order.
+  // Banded frames: the peaks the pass found, finished on the pool. Their
+  // lists in band order are the scan's in row order.
   const size_t capacity = candidates[0].size();
   bool from_bands = banded;
   if (banded) {
-    const int nb = static_cast<int>(bands.bands.size());
-    const int lh = streak.lattice_height, ns = std::min(lh, nb);
-    pool.parallelFor(nb + ns, [&](int b, int e) {
-      for (int i = b; i < e; ++i) {
-        if (i < nb) {
-          finishBandPeaks(i);
-        } else {
-          const int s = i - nb;
-          streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(),
-                          static_cast<int>(static_cast<long>(lh) * s / ns),
-                          static_cast<int>(static_cast<long>(lh) * (s + 1) / ns));
-        }
-      }
+    pool.parallelFor(static_cast<int>(bands.bands.size()), [&](int b, int e) {
+      for (int i = b; i < e; ++i) finishBandPeaks(i);
     });
     // The scan keeps at most `capacity` candidates per part, before the
     // ratio test; past that (or a band list full), scan the plane as
@@ -422,6 +413,7 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
     select(keep, out.blobs, std::numeric_limits<size_t>::max());
   }
   out.min_saturation = color_gate.threshold();
+  streak_levels = streakLevels(color_gate.markerContrast(), luma_mean);
 
   // Weak peaks only around the blobs (hysteresis): where a side blob of a
   // robot whose center blob was found may lie.
@@ -476,40 +468,46 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
   times.peaks_ms = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
-  findStreaks(out, /*scored=*/banded);
+  findStreaks(out);
   times.streak_ms = msSince(t0);
   times.total_ms = msSince(t_start);
   has_frame = true;
   return true;
 }
 
-void CpuPipeline::Impl::findStreaks(BlobList& out, bool scored) {
+void CpuPipeline::Impl::findStreaks(BlobList& out) {
+  // Scored once the frame's peaks have given its marker contrast.
   const int lh = streak.lattice_height;
-  if (!scored) {
-    pool.parallelFor(lh, [&](int b, int e) {
-      streakScoreRows(streak_coarse.data(), streak, streak_score.data(), streak_orient.data(), b, e);
-    });
-  }
+  pool.parallelFor(lh, [&](int b, int e) {
+    streakScoreRows(streak_coarse.data(), streak, streak_levels, streak_score.data(), streak_orient.data(), b, e);
+  });
   auto peaks = [&](int p, int b, int e) {
     streak_counts[p] = findStreakPeakRows(streak_score.data(), streak_mask.data(), streak,
                                           streak_candidates[p].data(), 0, kMaxStreakCandidates, b, e);
   };
-  // The lattice is small: on this thread when the pool would only be woken
-  // for it (the same parts, so the same candidates).
-  if (scored) forParts(lh, peaks, /*here=*/true);
-  else forParts(lh, peaks);
+  forParts(lh, peaks);
   streak_merged.clear();
   for (size_t p = 0; p < streak_candidates.size(); ++p)
     streak_merged.insert(streak_merged.end(), streak_candidates[p].begin(),
                          streak_candidates[p].begin() + streak_counts[p]);
   std::sort(streak_merged.begin(), streak_merged.end(), strongerStreak);
-  for (const StreakPeak& p : streak_merged) {
-    if (!streaks_unhidden && nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) continue;
+  auto refined = [&](const StreakPeak& p) {
     const int o = streak_orient[static_cast<size_t>(p.y) * streak.lattice_width + p.x];
-    const Blob blob = streakBlob(
+    return streakBlob(
         refineStreak(ca.data(), cb.data(), grid.width, grid.height, streak_coarse.data(), streak, p, o), p.score);
-    if (streaks_unhidden || acceptStreakBlob(out.blobs, blob, grid.scale, color_gate)) out.blobs.push_back(blob);
+  };
+  if (streaks_unhidden) {
+    for (const StreakPeak& p : streak_merged) out.blobs.push_back(refined(p));
+    return;
   }
+  takeStreaksMarkingsLast(
+      streak_merged,
+      [&](const StreakPeak& p, Blob& blob) {
+        if (nearBlob(out.blobs, streakPeakCenter(streak, p), grid.scale)) return false;
+        blob = refined(p);
+        return true;
+      },
+      streak_markings, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
 }
 
 Blob CpuPipeline::Impl::streakBlob(GridPx g, float score) const {

@@ -30,6 +30,7 @@
 #include "pipeline/peak_select.h"
 #include "pipeline/remap_table.h"
 #include "pipeline/score_windows.h"
+#include "pipeline/streak_markings.h"
 #include "pipeline/streak_score.h"
 #include "pipeline/thread_pool.h"
 #include "pipeline/view_stretch.h"
@@ -95,6 +96,7 @@ struct CpuPipeline::Impl {
   std::vector<Blob> merged_blobs;  // per entry of `merged`, from the bands
   std::vector<int> rank;           // `merged` strongest first, as indices
   float luma_mean = 100;
+  StreakLevels streak_levels;  // this frame's, from its marker contrast (streak_windows.h)
   bool has_frame = false;
 
   // Fast-ball pass (streak_score.h): coarse chroma pairs, score, best
@@ -102,6 +104,8 @@ struct CpuPipeline::Impl {
   StreakWindows streak;
   std::vector<float> streak_coarse, streak_score;
   std::vector<uint8_t> streak_orient, streak_mask;
+  MarkingMask streak_markings;  // grid cells on a field line (streak_markings.h)
+  std::vector<Blob> streak_later;  // streak candidates on a marking (reserved)
   std::vector<std::vector<StreakPeak>> streak_candidates;
   std::vector<int> streak_counts;
   std::vector<StreakPeak> streak_merged;
@@ -160,15 +164,10 @@ struct CpuPipeline::Impl {
   int weakCapacity() const { return opt.weak_threshold > 0 ? std::max(0, opt.max_weak_blobs) : 0; }
 
   // Splits rows [0, n) into one contiguous band per pool part and tells the
-  // body its part index (`here`: all parts in turn on this thread).
+  // body its part index.
   template <class F>
-  void forParts(int n, F&& body, bool here = false) {
+  void forParts(int n, F&& body) {
     const int parts = pool.size();
-    if (here) {
-      for (int p = 0; p < parts; ++p)
-        body(p, static_cast<int>(static_cast<long>(n) * p / parts), static_cast<int>(static_cast<long>(n) * (p + 1) / parts));
-      return;
-    }
     pool.parallelFor(parts, [&](int pb, int pe) {
       for (int p = pb; p < pe; ++p) {
         const int b = static_cast<int>(static_cast<long>(n) * p / parts);
@@ -246,10 +245,10 @@ struct CpuPipeline::Impl {
   bool process(const cv::Mat& raw, BlobList& out);
 
   // Fast balls (streak_score.h): candidates the blob score missed, appended
-  // after the blobs, strongest first. The coarse rows were made with the
-  // rectification; `scored`: the lattice score too (the banded path makes
-  // it on the pool beside the peaks).
-  void findStreaks(BlobList& out, bool scored);
+  // after the blobs, strongest first (those on a marking last). The coarse
+  // rows were made with the rectification; the lattice is scored here, at
+  // the levels of this frame's marker contrast (known once the peaks are).
+  void findStreaks(BlobList& out);
 
   // A fast-ball candidate at grid position g, its color from the frame.
   Blob streakBlob(GridPx g, float score) const;

@@ -149,7 +149,8 @@ void FinePeak::configureStreaks(const StreakWindows& w, const uint8_t* lattice_m
   reserve(patch_.coarse_width * w.factor);
 }
 
-int FinePeak::streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int capacity) {
+int FinePeak::streaks(const cv::Mat& raw, float gain, const StreakLevels& levels, GridPx c, Streak* out,
+                      int capacity) {
   const StreakWindows& w = streak_;
   const int f = w.factor, cell = f * kStreakLatticeStep;  // grid cells per lattice cell
   // The patch's first lattice cell, kept inside the grid's lattice.
@@ -166,7 +167,7 @@ int FinePeak::streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int
   const int sx0 = std::max(li - reach_, lx0 + 1) - lx0, sx1 = std::min(li + reach_, lx0 + side_ - 2) - lx0;
   const int sy0 = std::max(lj - reach_, ly0 + 1) - ly0, sy1 = std::min(lj + reach_, ly0 + side_ - 2) - ly0;
   if (sx0 > sx1 || sy0 > sy1) return 0;
-  streakScoreRows(patch_coarse_.data(), patch_, patch_score_.data(), patch_orient_.data(), sy0 - 1, sy1 + 2);
+  streakScoreRows(patch_coarse_.data(), patch_, levels, patch_score_.data(), patch_orient_.data(), sy0 - 1, sy1 + 2);
   std::fill(patch_mask_.begin(), patch_mask_.end(), uint8_t{0});
   for (int y = sy0; y <= sy1; ++y)
     for (int x = sx0; x <= sx1; ++x)

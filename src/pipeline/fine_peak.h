@@ -68,15 +68,15 @@ class FinePeak {
   void configureStreaks(const StreakWindows& w, const uint8_t* lattice_mask, int reach);
   // The streak lattice peaks findStreakPeakRows finds on the whole grid
   // whose lattice cell lies within the reach of c's, scored as
-  // streakScoreRows scores them from chroma rectified here (the same chroma,
-  // so the same scores), each placed by refineStreak. Appended to
-  // out[0, capacity); returns how many.
+  // streakScoreRows scores them at `levels` from chroma rectified here (the
+  // same chroma, so the same scores), each placed by refineStreak. Appended
+  // to out[0, capacity); returns how many.
   struct Streak {
     StreakPeak peak;  // the whole grid's lattice cell
     int orientation = 0;
     GridPx at;
   };
-  int streaks(const cv::Mat& raw, float gain, GridPx c, Streak* out, int capacity);
+  int streaks(const cv::Mat& raw, float gain, const StreakLevels& levels, GridPx c, Streak* out, int capacity);
 
  private:
   // Chroma of window cells [x0, x0 + w) x [y0, y0 + h) into ca_, cb_ (row

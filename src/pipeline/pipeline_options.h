@@ -65,8 +65,8 @@ struct PipelineOptions {
 // bayer_ms is the Bayer part's share of that pass (its thread time over the
 // threads), rectify_ms is 0 and score_ms is the rest of the pass, which
 // also finds the peaks of the bands' inner rows and most ratio tests
-// (band_peaks.h); peaks_ms then includes the fast-ball lattice score, which
-// runs on the pool in the same job as the rest of the peak work.
+// (band_peaks.h). The fast-ball lattice score is in streak_ms: it waits for
+// the peaks, whose colors set its floor (streak_windows.h).
 struct StageTimes {
   double bayer_ms = 0, rectify_ms = 0, color_ms = 0, gradient_ms = 0, sat_ms = 0, score_ms = 0,
          peaks_ms = 0, streak_ms = 0, total_ms = 0;

@@ -134,7 +134,8 @@ inline void footprint(const float* coarse, const StreakWindows& w, int o, int x,
 namespace {
 
 // The full score of one cell (all orientations) into best / best_o.
-inline void cellScore(const float* coarse, const StreakWindows& w, int x, int y, float& best, uint8_t& best_o) {
+inline void cellScore(const float* coarse, const StreakWindows& w, float contrast_floor, int x, int y, float& best,
+                      uint8_t& best_o) {
   best = 0;
   best_o = 0;
   for (int o = 0; o < kStreakOrientations; ++o) {
@@ -150,7 +151,7 @@ inline void cellScore(const float* coarse, const StreakWindows& w, int x, int y,
     ma *= 0.25f, mb *= 0.25f;
     float lo = da[0] * ma + db[0] * mb;
     for (int k = 1; k < 4; ++k) lo = std::min(lo, da[k] * ma + db[k] * mb);
-    const float v = lo / (0.25f * sq + kStreakFloor);
+    const float v = lo / (0.25f * sq + contrast_floor);
     if (v > best) best = v, best_o = static_cast<uint8_t>(o);
   }
 }
@@ -158,8 +159,8 @@ inline void cellScore(const float* coarse, const StreakWindows& w, int x, int y,
 // Gate of lattice cells i0..i0+n of coarse row y into pass[]: squared
 // chroma distance of the cell from the mean of the four cells `r` away along
 // the axes (off any ball or streak up to the footprint's length).
-__attribute__((target_clones("avx2", "default"))) void gateRow(const float* coarse, int cw, int r, int i0,
-                                                               int n, int y, uint8_t* pass) {
+__attribute__((target_clones("avx2", "default"))) void gateRow(const float* coarse, int cw, int r, float gate,
+                                                               int i0, int n, int y, uint8_t* pass) {
   constexpr int s = 2 * kStreakLatticeStep;  // floats between lattice cells
   const float* c = coarse + 2 * (static_cast<size_t>(y) * cw + static_cast<size_t>(i0) * kStreakLatticeStep);
   const float* up = c - 2 * static_cast<ptrdiff_t>(r) * cw;
@@ -168,14 +169,14 @@ __attribute__((target_clones("avx2", "default"))) void gateRow(const float* coar
     const float ma = 0.25f * (((c[s * i - 2 * r] + c[s * i + 2 * r]) + up[s * i]) + dn[s * i]);
     const float mb = 0.25f * (((c[s * i + 1 - 2 * r] + c[s * i + 1 + 2 * r]) + up[s * i + 1]) + dn[s * i + 1]);
     const float da = c[s * i] - ma, db = c[s * i + 1] - mb;
-    pass[i] = da * da + db * db > kStreakGate;
+    pass[i] = da * da + db * db > gate;
   }
 }
 
 }  // namespace
 
-void streakScoreRows(const float* coarse, const StreakWindows& w, float* score, uint8_t* orientation,
-                     int j_begin, int j_end) {
+void streakScoreRows(const float* coarse, const StreakWindows& w, const StreakLevels& levels, float* score,
+                     uint8_t* orientation, int j_begin, int j_end) {
   const int cw = w.coarse_width, ch = w.coarse_height, m = w.margin, lw = w.lattice_width;
   constexpr int kStep = kStreakLatticeStep;
   // Lattice columns whose coarse cell has a full footprint: [i_lo, i_hi).
@@ -191,9 +192,9 @@ void streakScoreRows(const float* coarse, const StreakWindows& w, float* score, 
     if (y < m || y >= ch - m) continue;
     for (int i0 = i_lo; i0 < i_hi; i0 += kChunk) {
       const int n = std::min(kChunk, i_hi - i0);
-      gateRow(coarse, cw, w.gate_reach, i0, n, y, pass);
+      gateRow(coarse, cw, w.gate_reach, levels.gate, i0, n, y, pass);
       for (int k = 0; k < n; ++k)
-        if (pass[k]) cellScore(coarse, w, (i0 + k) * kStep, y, srow[i0 + k], orow[i0 + k]);
+        if (pass[k]) cellScore(coarse, w, levels.floor, (i0 + k) * kStep, y, srow[i0 + k], orow[i0 + k]);
     }
   }
 }

@@ -38,13 +38,12 @@ void streakCoarseRows(const float* ca, const float* cb, int width, const StreakW
                       int cy_begin, int cy_end);
 
 // Streak score of lattice rows [j_begin, j_end) into lattice-sized planes:
-// where the gate passes
-// (kStreakGate), for each orientation, with
-// I the inner mean, S_k the four surround samples, D_k = I - S_k and D their
-// mean, min_k (D_k . D) / (mean_k |D_k|^2 + kStreakFloor); the best
+// where the gate passes (levels.gate), for each orientation, with I the
+// inner mean, S_k the four surround samples, D_k = I - S_k and D their
+// mean, min_k (D_k . D) / (mean_k |D_k|^2 + levels.floor); the best
 // orientation's score and index. Cells within the margin are 0.
-void streakScoreRows(const float* coarse, const StreakWindows& w, float* score, uint8_t* orientation,
-                     int j_begin, int j_end);
+void streakScoreRows(const float* coarse, const StreakWindows& w, const StreakLevels& levels, float* score,
+                     uint8_t* orientation, int j_begin, int j_end);
 
 // A local maximum of the lattice score (3x3, strict toward the top-left as
 // findPeakRows) above kStreakThreshold where mask (lattice sized) allows,

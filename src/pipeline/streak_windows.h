@@ -27,7 +27,8 @@ inline constexpr float kStreakThreshold = 0.45f;
 // Added to the mean squared contrast before the ratio (brightness-normalised
 // chroma units): texture whose contrast is small against the ball's cannot
 // reach high scores (at 0.02, 8700 carpet cells of one frame scored above
-// the threshold and crowded the ball out of the candidate lists).
+// the threshold and crowded the ball out of the candidate lists). Used as
+// it stands only where the frame's markers give no scale (streakLevels).
 inline constexpr float kStreakFloor = 1.0f;
 // Cells are scored only where the cell's chroma differs from the mean of
 // four cells around it (the axis-aligned end samples) by more than this
@@ -35,6 +36,41 @@ inline constexpr float kStreakFloor = 1.0f;
 // needs a contrast of about kStreakThreshold * kStreakFloor, and most of
 // the field is plain carpet far below.
 inline constexpr float kStreakGate = 0.2f;
+// The floor as a share of the frame's marker contrast (the squared chroma
+// distance of its most colored strong peaks from the carpet, see
+// BlobColorGate::markerContrast): a camera's cast, desaturation or gamma
+// shrinks the ball's streak, the carpet's texture and the markers alike, so
+// the score weighs the streak against what this frame's colors can show.
+// The preset's own colors give a marker contrast of about 9.5 (floor 0.48);
+// the ball's streak there has a squared contrast of about 4.
+inline constexpr float kStreakFloorShare = 0.05f;
+
+// The floor and gate one frame's streak pass uses.
+struct StreakLevels {
+  float floor = kStreakFloor, gate = kStreakGate;
+};
+// From the frame's marker contrast in 0..255 rgb units and its mean luma
+// (the chroma's brightness normalisation); the fixed levels where either
+// is unknown (0). The gate keeps its ratio to the floor.
+inline StreakLevels streakLevels(float marker_contrast, float luma_mean) {
+  StreakLevels l;
+  if (!(marker_contrast > 0) || !(luma_mean > 0)) return l;
+  l.floor = kStreakFloorShare * marker_contrast / (luma_mean * luma_mean);
+  l.gate = l.floor * (kStreakGate / kStreakFloor);
+  return l;
+}
+
+// Whether a streak that scored `score` at `levels` would pass the fixed
+// floor too. Its squared contrast q follows from the score where the
+// footprint fits cleanly (all four surround differences alike: score =
+// q / (q + floor)), and a rougher fit only lowers the score, so this is
+// the fixed floor's verdict on a clean streak and stricter on a rough one.
+inline bool streakPassesFixedFloor(float score, const StreakLevels& levels) {
+  if (!(score < 1)) return true;
+  const float q = score * levels.floor / (1 - score);
+  return q / (q + kStreakFloor) > kStreakThreshold;
+}
+
 // A streak candidate within this distance of a blob is that blob.
 inline constexpr double kStreakBlobDistanceMm = 30;
 

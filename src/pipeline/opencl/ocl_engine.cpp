@@ -528,8 +528,10 @@ bool OclEngine::fail(const char* what, int status) {
   return false;
 }
 
-bool OclEngine::run() {
-  const auto t_start = std::chrono::steady_clock::now();
+bool OclEngine::run() { return runPeaks() && runStreaks(StreakLevels{cfg_.streak_floor, cfg_.streak_gate}); }
+
+bool OclEngine::runPeaks() {
+  t_start_ = std::chrono::steady_clock::now();
   error_.clear();
   peaks_.clear();
   streak_peaks_.clear();
@@ -583,15 +585,6 @@ bool OclEngine::run() {
   if ((st = clEnqueueNDRangeKernel(q, b_->streak_coarse_k, 2, nullptr, coarse_global, pl, 0, nullptr,
                                    &ev[Buffers::kStreakCoarse])) != CL_SUCCESS)
     return fail("streak chroma", st);
-  const size_t lattice_global[2] = {roundUp(c.streak_lattice_width, pl[0]),
-                                    roundUp(c.streak_lattice_height, pl[1])};
-  if ((st = clEnqueueNDRangeKernel(q, b_->streak_score_k, 2, nullptr, lattice_global, pl, 0, nullptr,
-                                   &ev[Buffers::kStreakScore])) != CL_SUCCESS)
-    return fail("streak score", st);
-  if ((st = clEnqueueNDRangeKernel(q, b_->streak_peaks_k, 2, nullptr, lattice_global, pl, 0, nullptr,
-                                   &ev[Buffers::kStreakPeaks])) != CL_SUCCESS)
-    return fail("streak peaks", st);
-
   // Counters and the first peaks in one transfer; the rest only if needed.
   const int first = std::min(capacity_, kFirstPeaksRead);
   uint32_t* res = b_->results_mapped;
@@ -607,21 +600,6 @@ bool OclEngine::run() {
                                 &ev[Buffers::kDownload2])) != CL_SUCCESS)
     return fail("peak list download", st);
   std::memcpy(&last_luma_mean_, &res[2], sizeof(float));
-  // The streak list is short: read whole.
-  if ((st = clEnqueueReadBuffer(q, b_->streak_list, CL_TRUE, 0, streak_host_.size() * 4, streak_host_.data(),
-                                0, nullptr, &ev[Buffers::kStreakDownload])) != CL_SUCCESS)
-    return fail("streak list download", st);
-  {
-    const int ns = std::min(static_cast<int>(streak_host_[0]), c.streak_capacity);
-    const auto* sp = reinterpret_cast<const OclPeak*>(streak_host_.data() + kHeaderWords);
-    streak_peaks_.assign(sp, sp + ns);
-    std::sort(streak_peaks_.begin(), streak_peaks_.end(), [](const OclPeak& a, const OclPeak& b) {
-      if (a.score != b.score) return a.score > b.score;
-      if (a.cell_y != b.cell_y) return a.cell_y < b.cell_y;
-      return a.cell_x < b.cell_x;
-    });
-  }
-
   const auto* found = reinterpret_cast<const OclPeak*>(res + kHeaderWords);
   peaks_.assign(found, found + n);
   // Strongest first; ties by position so the order does not depend on the
@@ -638,6 +616,43 @@ bool OclEngine::run() {
   const long keep = std::min<long>(weak - peaks_.begin(), std::max(0, c.max_blobs));
   peaks_.erase(peaks_.begin() + keep, weak);
 
+  return true;
+}
+
+bool OclEngine::runStreaks(const StreakLevels& levels) {
+  const auto& c = cfg_;
+  cl_command_queue q = ctx_->queue();
+  auto* ev = b_->events;
+  cl_int st = CL_SUCCESS;
+  const size_t* pl = b_->pixel_local;
+  levels_ = levels;
+  if ((st = clSetKernelArg(b_->streak_score_k, 7, sizeof(cl_float), &levels.floor)) != CL_SUCCESS ||
+      (st = clSetKernelArg(b_->streak_score_k, 9, sizeof(cl_float), &levels.gate)) != CL_SUCCESS)
+    return fail("streak levels", st);
+  const size_t lattice_global[2] = {roundUp(c.streak_lattice_width, pl[0]),
+                                    roundUp(c.streak_lattice_height, pl[1])};
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_score_k, 2, nullptr, lattice_global, pl, 0, nullptr,
+                                   &ev[Buffers::kStreakScore])) != CL_SUCCESS)
+    return fail("streak score", st);
+  if ((st = clEnqueueNDRangeKernel(q, b_->streak_peaks_k, 2, nullptr, lattice_global, pl, 0, nullptr,
+                                   &ev[Buffers::kStreakPeaks])) != CL_SUCCESS)
+    return fail("streak peaks", st);
+
+  // The streak list is short: read whole.
+  if ((st = clEnqueueReadBuffer(q, b_->streak_list, CL_TRUE, 0, streak_host_.size() * 4, streak_host_.data(),
+                                0, nullptr, &ev[Buffers::kStreakDownload])) != CL_SUCCESS)
+    return fail("streak list download", st);
+  {
+    const int ns = std::min(static_cast<int>(streak_host_[0]), c.streak_capacity);
+    const auto* sp = reinterpret_cast<const OclPeak*>(streak_host_.data() + kHeaderWords);
+    streak_peaks_.assign(sp, sp + ns);
+    std::sort(streak_peaks_.begin(), streak_peaks_.end(), [](const OclPeak& a, const OclPeak& b) {
+      if (a.score != b.score) return a.score > b.score;
+      if (a.cell_y != b.cell_y) return a.cell_y < b.cell_y;
+      return a.cell_x < b.cell_x;
+    });
+  }
+
   auto& t = times_;
   t.upload_ms = eventMs(ev[Buffers::kUpload], ev[Buffers::kUpload]);
   t.bayer_ms = eventMs(ev[Buffers::kSubsample], ev[Buffers::kSubsample]);
@@ -647,13 +662,14 @@ bool OclEngine::run() {
              eventMs(ev[Buffers::kSatCols], ev[Buffers::kSatCols]);
   t.score_ms = eventMs(ev[Buffers::kScore], ev[Buffers::kScore]);
   t.peaks_ms = eventMs(ev[Buffers::kPeaks], ev[Buffers::kPeaks]);
-  t.streak_ms = eventMs(ev[Buffers::kStreakCoarse], ev[Buffers::kStreakPeaks]);
+  t.streak_ms = eventMs(ev[Buffers::kStreakCoarse], ev[Buffers::kStreakCoarse]) +
+                eventMs(ev[Buffers::kStreakScore], ev[Buffers::kStreakPeaks]);  // the host works between
   t.download_ms = eventMs(ev[Buffers::kDownload], ev[Buffers::kDownload]) +
                   eventMs(ev[Buffers::kDownload2], ev[Buffers::kDownload2]) +
                   eventMs(ev[Buffers::kStreakDownload], ev[Buffers::kStreakDownload]);
   t.device_ms = eventMs(ev[Buffers::kUpload], ev[Buffers::kStreakDownload]);
   b_->releaseEvents();
-  t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start_).count();
   return true;
 }
 

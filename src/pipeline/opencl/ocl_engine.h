@@ -10,6 +10,7 @@
 // as pinned staging memory and is copied by DMA. Every buffer is created once
 // in the constructor; run() allocates nothing of its own.
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -125,8 +126,15 @@ class OclEngine {
   // frameStride()). Valid until run() is called. nullptr on failure (see error()).
   uint8_t* frameBuffer();
   // Processes the frame in frameBuffer(). False (and error() set) on an
-  // OpenCL failure; never throws.
+  // OpenCL failure; never throws. run() is runPeaks() then runStreaks() at
+  // the config's fixed levels; a caller that sets the fast-ball pass's
+  // levels from the frame's peaks (streakLevels) calls the two itself.
   bool run();
+  // Everything up to the peak list (and the streak pass's chroma).
+  bool runPeaks();
+  // The fast-ball pass's score and peaks at `levels`, after runPeaks().
+  bool runStreaks(const StreakLevels& levels);
+  const StreakLevels& lastStreakLevels() const { return levels_; }
 
   // Peaks above the threshold (up to max_blobs), then all weak peaks, each
   // part strongest first.
@@ -180,6 +188,8 @@ class OclEngine {
   OclStageTimes times_;
   std::string error_;
   float last_luma_mean_ = 0;
+  StreakLevels levels_;
+  std::chrono::steady_clock::time_point t_start_;  // of runPeaks, for the wall time
 };
 
 }  // namespace dv

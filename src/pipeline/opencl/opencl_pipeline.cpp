@@ -55,6 +55,7 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   cfg.weak_threshold = static_cast<float>(opt_.weak_threshold);
   cfg.max_weak_blobs = opt_.max_weak_blobs;
   const ChromaTransform chroma = ChromaTransform::of(opt_.color);
+  color_gate_.setChroma(chroma);
   for (int i = 0; i < 3; ++i) {  // as CpuPipeline's ChromaFixed
     cfg.chroma_a[i] = static_cast<int>(std::lround(chroma.a[i] * 1024));
     cfg.chroma_b[i] = static_cast<int>(std::lround(chroma.b[i] * 1024));
@@ -80,6 +81,8 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
     }
     streak_ = streakWindows(grid_.scale, grid_.width, grid_.height);
     applyStreakWindows(streak_, streakPeakMask(table.valid.data(), grid_.width, grid_.height, streak_), cfg);
+    streak_markings_ = MarkingMask(camera, field, grid_, opt_.plane_height);
+    streak_later_.reserve(kMaxStreakCandidates);
   }
   engine_ = std::make_unique<OclEngine>(std::make_shared<OclContext>(device), std::move(cfg));
   const auto& ec = engine_->config();
@@ -138,7 +141,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   } else {
     for (int y = 0; y < raw.rows; ++y) std::memcpy(dst + row_bytes * y, raw.ptr(y), row_bytes);
   }
-  if (!engine_->run()) {
+  if (!engine_->runPeaks()) {
     error_ = engine_->error();
     return false;
   }
@@ -159,6 +162,11 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   color_gate_.endPeaks();
   out.neutral = color_gate_.neutral();
   out.min_saturation = color_gate_.threshold();
+  // The fast-ball pass weighs streaks against this frame's marker contrast.
+  if (!engine_->runStreaks(streakLevels(color_gate_.markerContrast(), engine_->lastLumaMean()))) {
+    error_ = engine_->error();
+    return false;
+  }
   for (const auto& p : engine_->peaks()) {
     const bool weak = !(p.score > cfg.threshold);
     if (weak && (static_cast<int>(out.weak.size()) >= cfg.max_weak_blobs || !reach_.nearKept(p.cell_x, p.cell_y)))
@@ -179,17 +187,19 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     }
   }
   // Fast-ball streaks, as the CPU reference (streak_score.h).
-  for (const auto& p : engine_->streakPeaks()) {
-    const StreakPeak cell{static_cast<int>(p.cell_x), static_cast<int>(p.cell_y), p.score};
-    if (nearBlob(out.blobs, streakPeakCenter(streak_, cell), grid_.scale)) continue;
-    Blob b;
-    b.grid = {p.x, p.y};
-    b.position = grid_.toField(b.grid);
-    b.score = p.score;
-    b.streak = true;
-    b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
-    if (acceptStreakBlob(out.blobs, b, grid_.scale, color_gate_)) out.blobs.push_back(b);
-  }
+  takeStreaksMarkingsLast(
+      engine_->streakPeaks(),
+      [&](const OclPeak& p, Blob& b) {
+        const StreakPeak cell{static_cast<int>(p.cell_x), static_cast<int>(p.cell_y), p.score};
+        if (nearBlob(out.blobs, streakPeakCenter(streak_, cell), grid_.scale)) return false;
+        b.grid = {p.x, p.y};
+        b.position = grid_.toField(b.grid);
+        b.score = p.score;
+        b.streak = true;
+        b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
+        return true;
+      },
+      streak_markings_, engine_->lastStreakLevels(), out.blobs, streak_later_, grid_.scale, color_gate_);
   const auto& t = engine_->times();
   times_.bayer_ms = t.bayer_ms;
   times_.rectify_ms = t.rectify_ms;  // fused with the chroma transform

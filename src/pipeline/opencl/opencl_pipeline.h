@@ -12,6 +12,7 @@
 #include "pipeline/blob_color_gate.h"
 #include "pipeline/blob_spacing.h"
 #include "pipeline/opencl/ocl_engine.h"
+#include "pipeline/streak_markings.h"
 #include "pipeline/streak_score.h"
 
 namespace dv {
@@ -45,6 +46,8 @@ class OpenClPipeline final : public PixelPipeline {
   PipelineOptions opt_;
   RectifiedGrid grid_;
   StreakWindows streak_;  // the fast-ball pass's footprint on this grid
+  MarkingMask streak_markings_;  // grid cells on a field line (streak_markings.h)
+  std::vector<Blob> streak_later_;  // streak candidates on a marking (reserved)
   std::unique_ptr<OclEngine> engine_;
   BlobSpacing spacing_;  // one blob per object
   BlobColorGate color_gate_;  // which peaks are colored enough (blob_color_gate.h)
