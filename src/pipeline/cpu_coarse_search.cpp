@@ -105,7 +105,7 @@ void CpuPipeline::Impl::makeCoarse(const FieldModel& field, const ScoreWindows& 
   part_streaks.assign(pool.size(), {});
   for (auto& list : part_streaks) list.reserve(coarse_streaks * kStreakPeaksPerSearch);
   fine_streaks.reserve(coarse_streaks * kStreakPeaksPerSearch);
-  streak_later.reserve(std::max(streak_later.capacity(), fine_streaks.capacity()));
+  streak_later.reserve(fine_streaks.capacity());  // no-op where the full pass reserved more
 }
 
 bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {

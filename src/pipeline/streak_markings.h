@@ -63,13 +63,13 @@ void takeStreaksMarkingsLast(const Candidates& candidates, Make make, const Mark
                              const StreakLevels& levels, std::vector<Blob>& blobs, std::vector<Blob>& later,
                              double grid_scale, const BlobColorGate& colors) {
   later.clear();
-  const float line_mix = kLineMixSaturationExcess * colors.carpetSaturation();
+  const float carpet = colors.carpetSaturation();
   for (const auto& c : candidates) {
     Blob b;
     if (!make(c, b)) continue;
     if (markings.at(b.grid)) {
       const bool stands_out = streakPassesFixedFloor(b.score, levels) ||
-                              (colors.carpetSaturation() > 0 && colors.saturation(b.rgb) > line_mix);
+                              (carpet > 0 && colors.saturation(b.rgb) > kLineMixSaturationExcess * carpet);
       if (stands_out && later.size() < later.capacity()) later.push_back(b);
     } else if (acceptStreakBlob(blobs, b, grid_scale, colors)) {
       blobs.push_back(b);
