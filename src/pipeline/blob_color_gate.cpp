@@ -206,10 +206,14 @@ float BlobColorGate::saturation(const float rgb[3]) const {
 void BlobColorGate::addPeak(const float rgb[3]) {
   if (static_cast<int>(peak_saturation_.size()) >= kMaxPeaksForScale) return;
   peak_saturation_.push_back(saturation(rgb));
-  const float d[3] = {rgb[0] - carpet_rgb_[0], rgb[1] - carpet_rgb_[1], rgb[2] - carpet_rgb_[2]};
+  peak_contrast_.push_back(chromaDistance2(rgb, carpet_rgb_));
+}
+
+float BlobColorGate::chromaDistance2(const float x[3], const float y[3]) const {
+  const float d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   const float a = chroma_.a[0] * d[0] + chroma_.a[1] * d[1] + chroma_.a[2] * d[2];
   const float b = chroma_.b[0] * d[0] + chroma_.b[1] * d[1] + chroma_.b[2] * d[2];
-  peak_contrast_.push_back(a * a + b * b);
+  return a * a + b * b;
 }
 
 void BlobColorGate::endPeaks() {

@@ -54,6 +54,10 @@ class BlobColorGate {
   // (max - min) / max of rgb after the white balance the lines give.
   float saturation(const float rgb[3]) const;
 
+  // Squared distance of two colors in the pixel pipeline's chroma axes
+  // (0..255 rgb units, before the white balance).
+  float chromaDistance2(const float x[3], const float y[3]) const;
+
   const NeutralColor& neutral() const { return neutral_; }
   float threshold() const { return threshold_; }
   // After endPeaks: the squared chroma distance (chroma axes, 0..255 rgb)
@@ -63,9 +67,6 @@ class BlobColorGate {
   // seen, or where the lines clip in two channels (their cast is then
   // unknown).
   float markerContrast() const { return marker_contrast_; }
-  // The carpet's saturation beside the lines (as saturation()); 0 where the
-  // lines or the carpet were not seen.
-  float carpetSaturation() const { return carpet_valid_ && neutral_.valid ? saturation(carpet_rgb_) : 0; }
   int linePoints() const { return static_cast<int>(points_.size()); }
 
  private:

@@ -259,7 +259,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
         b = streakBlob(s.at, s.peak.score);
         return true;
       },
-      streak_markings, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
+      streak_markings, raw, opt.bayer, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
   out.neutral = color_gate.neutral();
   out.min_saturation = color_gate.threshold();
   times = coarse->times;

@@ -507,7 +507,7 @@ void CpuPipeline::Impl::findStreaks(BlobList& out) {
         blob = refined(p);
         return true;
       },
-      streak_markings, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
+      streak_markings, last_raw, opt.bayer, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
 }
 
 Blob CpuPipeline::Impl::streakBlob(GridPx g, float score) const {

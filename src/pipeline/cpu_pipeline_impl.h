@@ -105,7 +105,7 @@ struct CpuPipeline::Impl {
   std::vector<float> streak_coarse, streak_score;
   std::vector<uint8_t> streak_orient, streak_mask;
   MarkingMask streak_markings;  // grid cells on a field line (streak_markings.h)
-  std::vector<Blob> streak_later;  // streak candidates on a marking (reserved)
+  std::vector<MarkedStreak> streak_later;  // streak candidates on a marking (reserved)
   std::vector<std::vector<StreakPeak>> streak_candidates;
   std::vector<int> streak_counts;
   std::vector<StreakPeak> streak_merged;

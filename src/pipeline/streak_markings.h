@@ -1,39 +1,50 @@
 #pragma once
-// Where the field's markings lie on the rectified grid, for the fast-ball
-// pass. The lines are white only under a neutral camera: under a color
-// cast, or with the false color a Bayer mosaic gives a line two pixels
-// wide, a short stretch of line is a colored bar on the carpet that fits
-// the streak footprint, and one frame's lines give dozens of candidates.
-// The backends take candidates on a marking after all others, so the lines
-// cannot fill the streak list before a ball elsewhere, and those on a
-// marking most colored first (saturation after the lines' white balance):
-// a stretch of line is a line-carpet mix, no more colored than the carpet,
-// while a ball on the line adds its own color (under a cold cast at
-// saturation 0.4 the center line's candidates showed 0.3, the ball rolling
-// along it 0.6, the carpet 0.34).
-// Nor does the frame's marker contrast scale the floor there: the lines'
-// chroma under a cast grows with the cast, not with the markers. A
-// candidate on a marking passes the fixed floor (streakPassesFixedFloor)
-// or is clearly more colored than the carpet (kLineMixSaturationExcess).
+// Where the field's markings lie on the rectified grid, and what they look
+// like there, for the fast-ball pass. The lines are white only under a
+// neutral camera: under a color cast, or with the false color a Bayer
+// mosaic gives a line two pixels wide, a short stretch of line is a
+// colored bar on the carpet that fits the streak footprint, and one
+// frame's lines give dozens of candidates. The backends take candidates on
+// a marking after all others, so the lines cannot fill the streak list
+// before a ball elsewhere.
+// A candidate on a marking is weighed against the marking itself rather
+// than the carpet: its color against the same marking's, seen the same way
+// a little further along it (cast, gamma, the mosaic's false colors, the
+// light and the line's width alike). A stretch of line matches its
+// neighbours; a ball on the line adds its own color. The difference passes
+// as a streak's contrast does (at the frame's levels), and candidates are
+// taken most distinct first. Where two markings meet, no stretch further
+// along either looks like the crossing: there a candidate must pass the
+// fixed floor (streakPassesFixedFloor), as under a neutral camera.
+#include <opencv2/core.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "geometry/camera_model.h"
 #include "geometry/field_model.h"
 #include "pipeline/blob.h"
 #include "pipeline/blob_color_gate.h"
+#include "pipeline/pipeline_options.h"
 #include "pipeline/rectified_grid.h"
 #include "pipeline/streak_score.h"
 
 namespace dv {
 
-// A line's stretch reads up to this many times the carpet's saturation:
-// the Bayer mosaic's false colors on a line 2 px wide and a camera's gamma
-// bend the mix (tungsten, saturation 0.4, gamma 1.6: up to 1.32 times; the
-// ball on the center line under the cold cast: 1.76).
-inline constexpr float kLineMixSaturationExcess = 1.5f;
+// How far along the marking its own look is read: twice the footprint's
+// end reach (kStreakEndMm clears the ball and half its streak at 8 m/s),
+// so that the reference's color disc clears the streak by as much again.
+inline constexpr double kMarkingLookMm = 128;
+
+// A grid cell's marking: its index (the field's lines, then its arcs; -1:
+// none) and whether two markings meet there.
+struct MarkingCell {
+  int marking = -1;
+  bool crossing = false;
+};
 
 class MarkingMask {
  public:
@@ -42,48 +53,86 @@ class MarkingMask {
   // within half the marking's thickness plus one coarse streak cell
   // (kStreakCellMm: where a line's streak centroid may land) of a marking.
   MarkingMask(const CameraModel& camera, const FieldModel& field, const RectifiedGrid& grid, double plane_height);
-  bool at(GridPx g) const {
+  MarkingCell at(GridPx g) const {
     const int x = static_cast<int>(std::lround(g.x)), y = static_cast<int>(std::lround(g.y));
-    return x >= 0 && y >= 0 && x < width_ && y < height_ && cells_[static_cast<size_t>(y) * width_ + x];
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return {};
+    const uint16_t c = cells_[static_cast<size_t>(y) * width_ + x];
+    return {static_cast<int>(c & kIndexBits) - 1, (c & kCrossingBit) != 0};
   }
+  // The squared chroma distance (colors.chromaDistance2) of the color disc
+  // (kColorRadiusMm) around plane point p from the same disc kMarkingLookMm
+  // along `marking` either way, the nearer of the two; nullopt where
+  // neither lies in the image.
+  std::optional<float> contrastToMarking(const cv::Mat& raw, BayerPattern bayer, const BlobColorGate& colors,
+                                         FieldMm p, int marking) const;
 
  private:
+  static constexpr uint16_t kCrossingBit = 0x8000, kIndexBits = 0x7fff;
+  // A marking as the plane z = plane_height sees it (the camera's center
+  // projects the field's plane onto it: directions are kept, circles stay
+  // circles about the projected center).
+  struct PlaneMarking {
+    bool arc = false;
+    FieldMm dir{1, 0};   // line: unit direction
+    FieldMm center{0, 0};  // arc: center on the plane
+  };
+  bool discRgb(const cv::Mat& raw, BayerPattern bayer, FieldMm p, float rgb[3]) const;
+
+  std::optional<CameraModel> camera_;
+  double plane_height_ = 0;
+  std::vector<PlaneMarking> markings_;
   int width_ = 0, height_ = 0;
-  std::vector<uint8_t> cells_;
+  std::vector<uint16_t> cells_;  // marking index + 1 (0: none), kCrossingBit
 };
 
+// A streak candidate on a marking and its contrast to the marking.
+struct MarkedStreak {
+  Blob blob;
+  float contrast = 0;
+};
+
+// Whether a candidate on a marking stands out from it: its contrast to the
+// marking (nullopt: unknown) weighed as a streak's contrast at `levels`,
+// and at a crossing the fixed floor.
+inline bool standsOutFromMarking(std::optional<float> contrast, MarkingCell cell, float score,
+                                 const StreakLevels& levels) {
+  if (!contrast || cell.crossing || !(levels.luma_mean > 0)) return streakPassesFixedFloor(score, levels);
+  const float floor = levels.floor * levels.luma_mean * levels.luma_mean;  // in 0..255 chroma units
+  return *contrast > 0 && *contrast / (*contrast + floor) > kStreakThreshold;
+}
+
 // Takes streak candidates in their order (strongest first) into `blobs` by
-// acceptStreakBlob, those on a marking after all the others, most colored
-// first, and only where they pass the fixed floor or are clearly more
-// colored than the carpet. make(c, blob) fills the candidate's blob (scored
-// at `levels`) and returns false to skip it; `later` is scratch (reserved
-// by the caller: no allocation per frame).
+// acceptStreakBlob, those on a marking after all the others, most distinct
+// from the marking first, and only where they stand out from it.
+// make(c, blob) fills the candidate's blob (scored at `levels`) and returns
+// false to skip it; `later` is scratch (reserved by the caller: no
+// allocation per frame). raw: the frame (Bayer mosaic or BGR).
 template <class Candidates, class Make>
 void takeStreaksMarkingsLast(const Candidates& candidates, Make make, const MarkingMask& markings,
-                             const StreakLevels& levels, std::vector<Blob>& blobs, std::vector<Blob>& later,
-                             double grid_scale, const BlobColorGate& colors) {
+                             const cv::Mat& raw, BayerPattern bayer, const StreakLevels& levels,
+                             std::vector<Blob>& blobs, std::vector<MarkedStreak>& later, double grid_scale,
+                             const BlobColorGate& colors) {
   later.clear();
-  const float carpet = colors.carpetSaturation();
   for (const auto& c : candidates) {
     Blob b;
     if (!make(c, b)) continue;
-    if (markings.at(b.grid)) {
-      const bool stands_out = streakPassesFixedFloor(b.score, levels) ||
-                              (carpet > 0 && colors.saturation(b.rgb) > kLineMixSaturationExcess * carpet);
-      if (stands_out && later.size() < later.capacity()) later.push_back(b);
+    const MarkingCell cell = markings.at(b.grid);
+    if (cell.marking >= 0) {
+      const auto contrast = markings.contrastToMarking(raw, bayer, colors, b.position, cell.marking);
+      if (standsOutFromMarking(contrast, cell, b.score, levels) && later.size() < later.capacity())
+        later.push_back({b, contrast.value_or(0)});
     } else if (acceptStreakBlob(blobs, b, grid_scale, colors)) {
       blobs.push_back(b);
     }
   }
   // A total order, so that both backends take equal lists alike.
-  std::sort(later.begin(), later.end(), [&](const Blob& a, const Blob& b) {
-    const float sa = colors.saturation(a.rgb), sb = colors.saturation(b.rgb);
-    if (sa != sb) return sa > sb;
-    if (a.score != b.score) return a.score > b.score;
-    return a.grid.y != b.grid.y ? a.grid.y < b.grid.y : a.grid.x < b.grid.x;
+  std::sort(later.begin(), later.end(), [](const MarkedStreak& a, const MarkedStreak& b) {
+    if (a.contrast != b.contrast) return a.contrast > b.contrast;
+    if (a.blob.score != b.blob.score) return a.blob.score > b.blob.score;
+    return a.blob.grid.y != b.blob.grid.y ? a.blob.grid.y < b.blob.grid.y : a.blob.grid.x < b.blob.grid.x;
   });
-  for (const Blob& b : later)
-    if (acceptStreakBlob(blobs, b, grid_scale, colors)) blobs.push_back(b);
+  for (const MarkedStreak& m : later)
+    if (acceptStreakBlob(blobs, m.blob, grid_scale, colors)) blobs.push_back(m.blob);
 }
 
 }  // namespace dv

@@ -48,12 +48,14 @@ inline constexpr float kStreakFloorShare = 0.05f;
 // The floor and gate one frame's streak pass uses.
 struct StreakLevels {
   float floor = kStreakFloor, gate = kStreakGate;
+  float luma_mean = 0;  // the frame's, which the chroma was divided by (0: unknown)
 };
 // From the frame's marker contrast in 0..255 rgb units and its mean luma
 // (the chroma's brightness normalisation); the fixed levels where either
 // is unknown (0). The gate keeps its ratio to the floor.
 inline StreakLevels streakLevels(float marker_contrast, float luma_mean) {
   StreakLevels l;
+  l.luma_mean = luma_mean > 0 ? luma_mean : 0;
   if (!(marker_contrast > 0) || !(luma_mean > 0)) return l;
   l.floor = kStreakFloorShare * marker_contrast / (luma_mean * luma_mean);
   l.gate = l.floor * (kStreakGate / kStreakFloor);

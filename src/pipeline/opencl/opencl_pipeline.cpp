@@ -199,7 +199,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
         b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
         return true;
       },
-      streak_markings_, engine_->lastStreakLevels(), out.blobs, streak_later_, grid_.scale, color_gate_);
+      streak_markings_, raw, opt_.bayer, engine_->lastStreakLevels(), out.blobs, streak_later_, grid_.scale, color_gate_);
   const auto& t = engine_->times();
   times_.bayer_ms = t.bayer_ms;
   times_.rectify_ms = t.rectify_ms;  // fused with the chroma transform

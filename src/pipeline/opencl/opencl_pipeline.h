@@ -47,7 +47,7 @@ class OpenClPipeline final : public PixelPipeline {
   RectifiedGrid grid_;
   StreakWindows streak_;  // the fast-ball pass's footprint on this grid
   MarkingMask streak_markings_;  // grid cells on a field line (streak_markings.h)
-  std::vector<Blob> streak_later_;  // streak candidates on a marking (reserved)
+  std::vector<MarkedStreak> streak_later_;  // streak candidates on a marking (reserved)
   std::unique_ptr<OclEngine> engine_;
   BlobSpacing spacing_;  // one blob per object
   BlobColorGate color_gate_;  // which peaks are colored enough (blob_color_gate.h)
