@@ -8,6 +8,8 @@
 #include <cmath>
 #include <utility>
 
+#include <opencv2/imgproc.hpp>
+
 #include "detection/color_classes.h"
 #include "detection/detector.h"
 #include "detection/seen_color.h"
@@ -210,6 +212,26 @@ TEST(DetectionSeenColor, DarkPeakIsNoMarker) {
   });
   EXPECT_EQ(f.right[0], 8);
   EXPECT_LT(f.right[1], 8);
+}
+
+// An over-exposed ball: its top clipped in red and green, its shaded rim
+// not. Only the rim's samples count, and their share of the disc says how
+// much of it they are; a disc clipped throughout gives nothing.
+TEST(DetectionSeenColor, AnOverExposedDiscIsReadWhereItDidNotClip) {
+  cv::Mat image(100, 100, CV_8UC3, cv::Scalar(60, 140, 70));  // BGR carpet
+  cv::circle(image, {50, 50}, 20, cv::Scalar(40, 120, 220), cv::FILLED);  // rim (r 220, g 120, b 40)
+  cv::circle(image, {50, 50}, 12, cv::Scalar(130, 255, 255), cv::FILLED);  // top clipped
+  const FrameView frame{&image, BayerPattern::None};
+  const SeenColor rim = unclippedDiscColor(frame, {50, 50}, 19);
+  ASSERT_GT(rim.share, 0);
+  EXPECT_NEAR(rim.rgb[0], 220, 1);
+  EXPECT_NEAR(rim.rgb[1], 120, 1);
+  EXPECT_NEAR(rim.rgb[2], 40, 1);
+  // The ring between radii 12 and 19 is about 60 % of the disc's area.
+  EXPECT_NEAR(rim.share, 1 - (12.0 * 12) / (19.0 * 19), 0.12);
+  EXPECT_EQ(unclippedDiscColor(frame, {50, 50}, 10).share, 0);
+  // Half beyond the image: the share is of the samples inside it.
+  EXPECT_GT(unclippedDiscColor(frame, {0, 50}, 19).share, 0);
 }
 
 }  // namespace

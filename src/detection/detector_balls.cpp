@@ -85,6 +85,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     return false;
   };
+  // Whether another strong blob lies within a pattern's reach of blob i.
+  auto dotsAround = [&](int i) {
+    const double reach = RobotPatternGeometry::kSideBlobDistance + RobotPatternGeometry::kSideBlobRadius;
+    for (int j = 0; j < n_strong; ++j)
+      if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
+    return false;
+  };
   ColorVec field_sum;
   int field_n = 0;
   marker_colored.clear();
@@ -96,8 +103,21 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
         p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
       continue;
-    const ClippedColor seen(b.rgb);
-    if (seen.saturated()) continue;
+    ClippedColor seen(b.rgb);
+    if (seen.saturated()) {
+      // Over-exposed (a sun patch): two clipped channels say too little, so
+      // the blob's color is read where its disc did not clip, a ball's
+      // shaded rim. That is a mix with what lies around it, so it must also
+      // stand alone: no other blob where a pattern's dots would be (a
+      // clipped center dot of a robot not found has them). A streak has no
+      // such disc.
+      ImagePx px;
+      double r;
+      if (b.streak || !ballInImage(i, px, r) || dotsAround(i)) continue;
+      const SeenColor rim = unclippedDiscColor(frame_view, px, r);
+      if (!(rim.share > 0) || ClippedColor(rim.rgb).saturated()) continue;
+      seen = ClippedColor(rim.rgb);
+    }
     int nearest_neg = kField;
     bool unexpected = false;
     const double color_conf = judge.confidence(seen, b.streak, &nearest_neg, &unexpected);
@@ -199,8 +219,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // (A streak's color is diluted by the carpet it passed over; a border
   // ball's is its visible part's, judged by pixels.)
   // (A ball in a marker's color is no sample of orange.)
+  // (Nor is an over-exposed one's.)
   if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && ball_cands[0].blob >= 0 &&
-      !ball_cands[0].streak && !marker_colored_ball)
+      !ball_cands[0].streak && !marker_colored_ball && !ClippedColor(blobs[ball_cands[0].blob].rgb).saturated())
     classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
   if (field_n > 0) {
     for (int c = 0; c < 3; ++c) field_sum.c[c] /= field_n;
@@ -290,7 +311,7 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     // and most of what lies around it carpet, not a robot's top.
     if (!test.isBall(b.rgb) || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
     const double carpet = carpetAroundBall(frame_view, ball_colors, px, r, opt.ball_radius, b.brightness());
-    if (carpet < 0.5) continue;
+    if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;
     c.blob = m.blob;
     c.pos = b.at_ball;

@@ -42,6 +42,9 @@ class MarkerColoredBallTest final : public BallColorTest {
 // green dots lie beyond the ring) and it is no darker than a robot's top
 // may be beside its markers (kTopBrightness). Samples beyond the image
 // count as no carpet.
+// A ball judged by where it lies stands mostly on the carpet: at least half
+// of that ring (a ball beside a robot still shows half of it).
+inline constexpr double kMinCarpetAroundBall = 0.5;
 double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness);
 

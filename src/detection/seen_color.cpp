@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detection/clipped_color.h"
 #include "pipeline/bayer_full.h"
 
 namespace dv {
@@ -48,6 +49,32 @@ SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const
   if (seen == 0) return out;
   for (int k = 0; k < 3; ++k) out.rgb[k] = static_cast<float>(sum[k] / seen);
   out.share = static_cast<double>(seen) / in_disc;
+  return out;
+}
+
+SeenColor unclippedDiscColor(const FrameView& frame, ImagePx center, double radius_px) {
+  SeenColor out;
+  if (!frame.image || frame.image->empty() || !(radius_px > 0)) return out;
+  const double w = frame.image->cols, h = frame.image->rows;
+  double sum[3] = {0, 0, 0};
+  int in_image = 0, kept = 0;
+  const double step = 2 * radius_px / (kSeenColorSteps - 1);
+  for (int j = 0; j < kSeenColorSteps; ++j)
+    for (int i = 0; i < kSeenColorSteps; ++i) {
+      const double dx = -radius_px + i * step, dy = -radius_px + j * step;
+      if (dx * dx + dy * dy > radius_px * radius_px) continue;
+      const double u = center.u + dx, v = center.v + dy;
+      if (u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
+      ++in_image;
+      float c[3];
+      frameRgbAt(frame, u, v, c);
+      if (std::max({c[0], c[1], c[2]}) >= kClipLevel) continue;
+      for (int k = 0; k < 3; ++k) sum[k] += c[k];
+      ++kept;
+    }
+  if (kept == 0) return out;
+  for (int k = 0; k < 3; ++k) out.rgb[k] = static_cast<float>(sum[k] / kept);
+  out.share = static_cast<double>(kept) / in_image;
   return out;
 }
 

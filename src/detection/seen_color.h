@@ -39,4 +39,10 @@ inline constexpr int kSeenColorSteps = 9;
 SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
                         double radius);
 
+// Mean RGB over the lattice points of the image disc of `radius_px` around
+// `center` that clip in no channel (kClipLevel); share: their share of the
+// disc's points inside the image. An over-exposed blob's own color is
+// where it did not clip: a ball's shaded rim.
+SeenColor unclippedDiscColor(const FrameView& frame, ImagePx center, double radius_px);
+
 }  // namespace dv
