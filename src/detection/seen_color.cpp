@@ -26,56 +26,63 @@ void frameRgbAt(const FrameView& frame, double u, double v, float rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c];
 }
 
-SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-                        double radius) {
+namespace {
+
+// Mean RGB over the kSeenColorSteps^2 lattice across a disc of `radius`:
+// at(dx, dy, u, v) gives the image position of offset (dx, dy) (false:
+// none), keep(rgb) whether a sample counts. share: the kept samples' share
+// of those in the image (`of_disc`: of the whole disc).
+template <class At, class Keep>
+SeenColor latticeMean(const FrameView& frame, double radius, bool of_disc, At at, Keep keep) {
   SeenColor out;
-  if (!frame.image || frame.image->empty()) return out;
+  if (!frame.image || frame.image->empty() || radius < 0) return out;
   const double w = frame.image->cols, h = frame.image->rows;
   double sum[3] = {0, 0, 0};
-  int in_disc = 0, seen = 0;
+  int in_disc = 0, in_image = 0, kept = 0;
   const double step = 2 * radius / (kSeenColorSteps - 1);
   for (int j = 0; j < kSeenColorSteps; ++j)
     for (int i = 0; i < kSeenColorSteps; ++i) {
       const double dx = -radius + i * step, dy = -radius + j * step;
       if (dx * dx + dy * dy > radius * radius) continue;
       ++in_disc;
-      const auto px = camera.fieldToImage({center.x + dx, center.y + dy, center.z});
-      if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) continue;
-      float c[3];
-      frameRgbAt(frame, px->u, px->v, c);
-      for (int k = 0; k < 3; ++k) sum[k] += c[k];
-      ++seen;
-    }
-  if (seen == 0) return out;
-  for (int k = 0; k < 3; ++k) out.rgb[k] = static_cast<float>(sum[k] / seen);
-  out.share = static_cast<double>(seen) / in_disc;
-  return out;
-}
-
-SeenColor unclippedDiscColor(const FrameView& frame, ImagePx center, double radius_px) {
-  SeenColor out;
-  if (!frame.image || frame.image->empty() || !(radius_px > 0)) return out;
-  const double w = frame.image->cols, h = frame.image->rows;
-  double sum[3] = {0, 0, 0};
-  int in_image = 0, kept = 0;
-  const double step = 2 * radius_px / (kSeenColorSteps - 1);
-  for (int j = 0; j < kSeenColorSteps; ++j)
-    for (int i = 0; i < kSeenColorSteps; ++i) {
-      const double dx = -radius_px + i * step, dy = -radius_px + j * step;
-      if (dx * dx + dy * dy > radius_px * radius_px) continue;
-      const double u = center.u + dx, v = center.v + dy;
-      if (u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
+      double u = 0, v = 0;
+      if (!at(dx, dy, u, v) || u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
       ++in_image;
       float c[3];
       frameRgbAt(frame, u, v, c);
-      if (std::max({c[0], c[1], c[2]}) >= kClipLevel) continue;
+      if (!keep(c)) continue;
       for (int k = 0; k < 3; ++k) sum[k] += c[k];
       ++kept;
     }
   if (kept == 0) return out;
   for (int k = 0; k < 3; ++k) out.rgb[k] = static_cast<float>(sum[k] / kept);
-  out.share = static_cast<double>(kept) / in_image;
+  out.share = static_cast<double>(kept) / (of_disc ? in_disc : in_image);
   return out;
+}
+
+}  // namespace
+
+SeenColor seenDiscColor(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+                        double radius) {
+  return latticeMean(
+      frame, radius, true,
+      [&](double dx, double dy, double& u, double& v) {
+        const auto px = camera.fieldToImage({center.x + dx, center.y + dy, center.z});
+        if (!px) return false;
+        u = px->u, v = px->v;
+        return true;
+      },
+      [](const float*) { return true; });
+}
+
+SeenColor unclippedDiscColor(const FrameView& frame, ImagePx center, double radius_px) {
+  return latticeMean(
+      frame, radius_px, false,
+      [&](double dx, double dy, double& u, double& v) {
+        u = center.u + dx, v = center.v + dy;
+        return true;
+      },
+      [](const float* c) { return std::max({c[0], c[1], c[2]}) < kClipLevel; });
 }
 
 }  // namespace dv
