@@ -1,5 +1,8 @@
 #include "detection/detector_impl.h"
 
+#include "detection/seen_color.h"
+#include "geometry/robot_pattern.h"
+
 namespace dv {
 
 Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const DetectorOptions& o)
@@ -64,12 +67,25 @@ void Detector::Impl::prepare(const BlobList& list) {
     for (int c = 0; c < 3; ++c) f.rgb[c] = b.rgb[c];
     f.score = b.score;
     f.streak = b.streak;
+    if (!weak && !b.streak && f.valid) readUnclipped(b, z0, f);
     blobs.push_back(f);
     // Invalid blobs and streaks are put far away so that no query finds them.
     (weak ? weak_pts : pts).push_back(f.valid && !f.streak ? f.at_ref : FieldMm{1e12, 1e12});
   }
   index.build();
   if (!weak_pts.empty()) weak_index.build();
+}
+
+void Detector::Impl::readUnclipped(const Blob& b, double z0, FrameBlob& f) const {
+  if (!ClippedColor(b.rgb).saturated()) return;
+  const auto px = camera.fieldToImage({b.position.x, b.position.y, z0});
+  if (!px) return;
+  // Within the smallest of the dots and the ball.
+  const double radius = std::min(RobotPatternGeometry::kSideBlobRadius, opt.ball_radius);
+  const SeenColor rim = unclippedDiscColor(frame_view, *px, ballRadiusPx(camera, {b.position.x, b.position.y, z0}, radius));
+  if (!(rim.share > 0) || ClippedColor(rim.rgb).saturated()) return;
+  f.has_unclipped = true;
+  std::copy(rim.rgb, rim.rgb + 3, f.unclipped_rgb);
 }
 
 void Detector::Impl::process(const BlobList& list, double t, Detections& out, const FrameView& frame) {

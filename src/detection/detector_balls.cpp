@@ -109,14 +109,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       // the blob's color is read where its disc did not clip, a ball's
       // shaded rim. That is a mix with what lies around it, so it must also
       // stand alone: no other blob where a pattern's dots would be (a
-      // clipped center dot of a robot not found has them). A streak has no
-      // such disc.
-      ImagePx px;
-      double r;
-      if (b.streak || !ballInImage(i, px, r) || dotsAround(i)) continue;
-      const SeenColor rim = unclippedDiscColor(frame_view, px, r);
-      if (!(rim.share > 0) || ClippedColor(rim.rgb).saturated()) continue;
-      seen = ClippedColor(rim.rgb);
+      // clipped center dot of a robot not found has them).
+      if (!b.has_unclipped || dotsAround(i)) continue;
+      seen = ClippedColor(b.unclipped_rgb);
     }
     int nearest_neg = kField;
     bool unexpected = false;

@@ -9,9 +9,21 @@ void Detector::Impl::orderByRatio(TwoMeansResult& r, int num, int den) {
                    neutral.valid ? neutral.rgb : nullptr);
 }
 
+// A center clipped in all three channels, which says nothing of its color,
+// clusters by its unclipped samples where it has them (a center clipped
+// in two is judged by the colors it may have been: its unclipped channel
+// tells more than its rim, which mixes with the robot's dark top).
+bool Detector::Impl::readByRim(const FrameBlob& b) {
+  return b.has_unclipped && std::min({b.rgb[0], b.rgb[1], b.rgb[2]}) >= kClipLevel;
+}
+
+ColorVec Detector::Impl::centerColor(const FrameBlob& b) {
+  return readByRim(b) ? colorFeature(b.unclipped_rgb[0], b.unclipped_rgb[1], b.unclipped_rgb[2]) : b.color;
+}
+
 TwoMeansResult Detector::Impl::clusterCenters() {
   samples.clear();
-  for (const auto& r : robots) samples.push_back(blobs[r.blob[0]].color);
+  for (const auto& r : robots) samples.push_back(centerColor(blobs[r.blob[0]]));
   labels.resize(samples.size());
   const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
   const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
@@ -28,8 +40,10 @@ int Detector::Impl::dropImplausibleCenters() {
   for (int i = 0; i < nr; ++i) {
     // A center clipped in two channels (a yellow top in a sun patch) is
     // judged by the colors it may have been, as the field and the lines
-    // are; a white line crossing clips all three and is judged as seen.
-    const ClippedColor c(blobs[robots[i].blob[0]].rgb);
+    // are; one clipped in all three by its rim where it has one (centerColor:
+    // a line crossing's is line and carpet), else as seen.
+    const FrameBlob& center = blobs[robots[i].blob[0]];
+    const ClippedColor c(readByRim(center) ? center.unclipped_rgb : center.rgb);
     const float d_team = c.distance(res.mean[labels[i]]);
     const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
     if (d_bg < d_team) {

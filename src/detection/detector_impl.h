@@ -104,6 +104,10 @@ struct Detector::Impl {
 
   // ---------------------------------------------------------------- frame
   void prepare(const BlobList& list);
+  // Fills f's unclipped color where blob b (on plane z0) clips in two channels.
+  void readUnclipped(const Blob& b, double z0, FrameBlob& f) const;
+  static bool readByRim(const FrameBlob& b);
+  static ColorVec centerColor(const FrameBlob& b);
 
   // ------------------------------------------- position based hypotheses
   HypothesisSearch search;

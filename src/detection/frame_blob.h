@@ -21,6 +21,10 @@ struct FrameBlob {
   bool streak = false;  // a fast-ball candidate: never part of a robot
   int robot = -1;       // accepted robot using this blob
   bool implausible_center = false;  // its robot was dropped for its center color
+  // A strong blob clipped in two channels: the mean of its disc's samples
+  // that clipped in none (its shaded rim; unclippedDiscColor), if any.
+  bool has_unclipped = false;
+  float unclipped_rgb[3] = {0, 0, 0};
 
   float brightness() const { return rgb[0] + rgb[1] + rgb[2]; }
 };
