@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "detection/detector.h"
 #include "detection_test_scene.h"
 #include "core/error.h"
@@ -160,6 +162,41 @@ TEST(DetectionBalls, PinkBlobApartIsNotABall) {
     if (with_ball) {
       EXPECT_NEAR(out.balls[0].position.x, 3000, 5);
     }
+  }
+}
+
+// A ball over-exposed in a sun patch: its blob's mean clips in red and
+// green, and only the frame's unclipped samples around it, its shaded rim,
+// show its color. Alone on the carpet it is the ball; with a pattern's dot
+// beside it, it may be a lost robot's clipped center, and is none.
+TEST(DetectionBalls, AnOverExposedBlobIsJudgedByItsRimWhereItStandsAlone) {
+  const CameraModel cam(test::topDownCamera());
+  const FieldMm ball{3000, 1000};
+  for (int with_dot = 0; with_dot < 2; ++with_dot) {
+    SceneBuilder s(cam, 31, {{1, 1, 1}, 1, 1, 0});
+    for (auto r : s.randomRobots(3, 3, kX0, 2000, kY0, kY1)) s.addRobot(r);
+    s.addBlob({ball.x, ball.y, 21.5}, ColorRef{255, 255, 130}, 0.8f);
+    if (with_dot) s.addBlob({ball.x + 60, ball.y, 140}, SceneBuilder::kGreen, 0.9f);
+    cv::Mat image(static_cast<int>(cam.calibration().image_height), static_cast<int>(cam.calibration().image_width),
+                  CV_8UC3, cv::Scalar(50, 110, 40));
+    const auto px = cam.fieldToImage({ball.x, ball.y, 21.5});
+    ASSERT_TRUE(px);
+    const cv::Point c(static_cast<int>(std::lround(px->u)), static_cast<int>(std::lround(px->v)));
+    cv::circle(image, c, 6, cv::Scalar(30, 110, 230), cv::FILLED);  // rim (BGR)
+    cv::circle(image, c, 1, cv::Scalar(130, 255, 255), cv::FILLED);  // clipped top
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out, FrameView{&image, BayerPattern::None});
+    if (with_dot) {
+      EXPECT_TRUE(out.balls.empty());
+    } else {
+      ASSERT_EQ(out.balls.size(), 1u);
+      EXPECT_NEAR(out.balls[0].position.x, ball.x, 10);
+      EXPECT_NEAR(out.balls[0].position.y, ball.y, 10);
+    }
+    // Without the frame the clipped color says too little.
+    det.process(s.list, 1, out);
+    EXPECT_TRUE(out.balls.empty());
   }
 }
 
