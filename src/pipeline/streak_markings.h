@@ -11,9 +11,10 @@
 // than the carpet: its color against the same marking's, seen the same way
 // a little further along it (cast, gamma, the mosaic's false colors, the
 // light and the line's width alike). A stretch of line matches its
-// neighbours; a ball on the line adds its own color. The difference passes
-// as a streak's contrast does (at the frame's levels), and candidates are
-// taken most distinct first. Where two markings meet, no stretch further
+// neighbours; a ball on the line adds its own color. The difference, less
+// the marking's own change between the two neighbours, passes as a
+// streak's contrast does (at the frame's levels), and candidates are taken
+// most distinct first. Where two markings meet, no stretch further
 // along either looks like the crossing: there a candidate must pass the
 // fixed floor (streakPassesFixedFloor), as under a neutral camera.
 #include <opencv2/core.hpp>
