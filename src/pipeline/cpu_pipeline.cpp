@@ -88,7 +88,9 @@ CpuPipeline::Impl::Impl(const CameraModel& cam, const FieldModel& field, const P
   streak = streakWindows(grid.scale, grid.width, grid.height);
   {
     streak_mask = streakPeakMask(table.valid.data(), grid.width, grid.height, streak);
-    streak_markings = MarkingMask(camera, field, grid, opt.plane_height);
+    // The coarse search's own pass (a fixed grid) hands its streaks on
+    // unhidden: only the full pass takes them past the markings.
+    if (!fixed_grid) streak_markings = MarkingMask(camera, field, grid, opt.plane_height);
     const size_t coarse = static_cast<size_t>(streak.coarse_width) * streak.coarse_height;
     const size_t lattice = streak_mask.size();
     streak_coarse.assign(2 * coarse, 0);
