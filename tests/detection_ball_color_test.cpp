@@ -84,5 +84,50 @@ TEST(BallColor, CarpetAndTeamColorsAreNoBall) {
   EXPECT_TRUE(judge.isBall(orange));
 }
 
+// A fast ball kicked under tungsten, in H.264 at 3 Mbit/s (1224 x 1024):
+// the stream kept its streak's brightness and about half its chroma, and
+// faded, (231, 108, 62) lies nearer to pink than to orange. A streak's
+// color is judged with its chroma faded toward the frame's white by up to
+// half (kStreakMinChroma), every class's alike (colors as the detector
+// read them in frame 0 of the motion preset under that cast).
+FrameColors tungstenStreamFrame() {
+  FrameColors f;
+  f.white.valid = true;
+  f.white.rgb[0] = 229, f.white.rgb[1] = 218, f.white.rgb[2] = 148;
+  f.color[kYellow] = {{146, 120, 25}};
+  f.color[kBlue] = {{72, 85, 119}};
+  f.color[kGreen] = {{83, 151, 52}};
+  f.color[kPink] = {{166, 53, 71}};
+  f.color[kOrange] = {{187, 88, 15}};
+  f.color[kField] = {{56, 153, 70}};
+  f.color[kWhite] = {{113, 107, 73}};
+  for (int k = 0; k < kNumClasses; ++k) f.seen[k] = true;
+  return f;
+}
+
+TEST(BallColor, AStreakWhoseChromaFadedIsStillTheBalls) {
+  FrameColors f = tungstenStreamFrame();
+  const float faded[3] = {231, 108, 62};
+  EXPECT_GT(BallColorJudge(f, kMinBrightness).confidence(faded, true), 0.3);
+  // Without the lines' white there is nothing to fade toward: nearer to
+  // pink than to anything else, and too weak a ball for the detector's
+  // least confidence (DetectorOptions::min_ball_confidence).
+  f.white.valid = false;
+  int nearest = -1;
+  EXPECT_LT(BallColorJudge(f, kMinBrightness).confidence(faded, true, &nearest), 0.3);
+  EXPECT_EQ(nearest, kPink);
+}
+
+TEST(BallColor, FadedStreaksOfPinkAndOfTheLinesAreNoBall) {
+  const FrameColors f = tungstenStreamFrame();
+  const BallColorJudge judge(f, kMinBrightness);
+  // A pink dot's blur, at full chroma and faded by half toward the white.
+  const ColorVec pink = f.color[kPink], half = colorMix(pink, 0.5f, f.color[kWhite], 0.5f, pink, 0.f);
+  for (const ColorVec& c : {pink, half}) EXPECT_EQ(judge.confidence(c.c, true), 0) << c.c[0] << " " << c.c[1];
+  // The lines mixed with the carpet.
+  const float line_mix[3] = {150, 175, 90};
+  EXPECT_EQ(judge.confidence(line_mix, true), 0);
+}
+
 }  // namespace
 }  // namespace dv

@@ -377,5 +377,50 @@ TEST(DetectionTracking, AStaleCopyWhereTheBallLayLosesToTheStreakThatLeftIt) {
       });
 }
 
+// A compressed stream fades a fast ball's streak: two frames of the kicked
+// ball's streak read in the pink dots' color. On its track's course, where
+// only a ball moves so fast, it continues the track; the same color off the
+// course is no ball.
+TEST(DetectionTracking, AFastBallsStreakInAnotherColorContinuesItsCourse) {
+  const FieldMm rest{-2250, 0};
+  kickedBall(
+      rest, 10, 400,
+      [&](SceneBuilder& s, int f) {
+        if (f >= kKick) s.list.blobs.back().streak = true, s.list.blobs.back().score = 0.6f;
+        if (f == kKick + 3 || f == kKick + 4) {
+          Blob& b = s.list.blobs.back();
+          b.rgb[0] = SceneBuilder::kPink.r, b.rgb[1] = SceneBuilder::kPink.g, b.rgb[2] = SceneBuilder::kPink.b;
+          Blob off = b;  // the same streak far off the course
+          off.position.y += 1500;
+          s.list.blobs.push_back(off);
+        }
+      },
+      [](const Detections& out, FieldMm ball, int f) {
+        ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+      });
+}
+
+// A streak that stays put on a goal wall (or a marking) continues no
+// track: in H.265 under tungsten the goal line's middle read as a faded
+// ball's streak frame after frame, a track of itself once something there
+// had started one. Only a track it moved along confirms a streak there.
+TEST(DetectionTracking, AStreakThatStaysPutOnAGoalWallIsNoBall) {
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  const FieldMm wall{-4600, 510};
+  for (int f = 0; f < 8; ++f) {
+    SceneBuilder s(cam, 900 + f);
+    s.addRobot({Team::Yellow, 1, {-3000, 1000}, 0});
+    s.addRobot({Team::Blue, 2, {-2000, 1500}, 1});
+    s.addBall(wall);  // round in frame 0: it starts a track
+    if (f > 0) s.list.blobs.back().streak = true, s.list.blobs.back().score = 0.6f;
+    det.process(s.list, f * kDt, out);
+    EXPECT_EQ(out.balls.size(), f == 0 ? 1u : 0u) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace dv

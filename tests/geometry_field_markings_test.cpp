@@ -18,6 +18,19 @@ TEST(FieldMarkings, DistanceToTheNearestLineOrArc) {
   EXPECT_NEAR(f.distanceToMarkings({-4000, -2000}), 500, 1e-9);        // the goal line
 }
 
+// Where markings meet: a ball's reach of two or more (the detector judges a
+// streak there as it judges one in the lines' own color).
+TEST(FieldMarkings, MarkingsMeetAtCrossingsCornersAndTheCenter) {
+  const FieldModel f = FieldModel::divisionB();
+  const double reach = 26.5;  // a ball's radius and half a line
+  EXPECT_EQ(f.markingsWithin({-3491, 6}, reach), 2);       // center line and penalty stretch
+  EXPECT_EQ(f.markingsWithin({-4490, -2990}, reach), 2);   // the field's corner
+  EXPECT_GE(f.markingsWithin({0, 0}, reach), 2);           // halfway and center lines
+  EXPECT_EQ(f.markingsWithin({-2250, 5}, reach), 1);       // on the center line alone
+  EXPECT_EQ(f.markingsWithin({-300, 400}, reach), 1);      // on the center circle alone
+  EXPECT_EQ(f.markingsWithin({-1000, 1500}, reach), 0);    // on the carpet
+}
+
 // A geometry packet carries the center circle's a2 as a float, 6.28318548,
 // just above the double 2 pi: still the whole circle (read modulo 2 pi it
 // spanned 2e-7 rad, and the center circle was a point at its a1).

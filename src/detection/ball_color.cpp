@@ -8,17 +8,23 @@ namespace dv {
 
 using namespace color_class;
 
-float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object) {
+float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object,
+                          const ColorVec* white) {
   float best = std::numeric_limits<float>::max();
+  const int chroma_steps = white ? kStreakShareSteps : 1;
   for (int i = 0; i < kStreakShareSteps; ++i) {
     const float a = kStreakMinShare + (1.f - kStreakMinShare) * i / (kStreakShareSteps - 1);
-    best = std::min(best, seen.distance(colorMix(field, 1.f - a, object, a, object, 0.f)));
+    const ColorVec mix = colorMix(field, 1.f - a, object, a, object, 0.f);
+    for (int j = 0; j < chroma_steps; ++j) {
+      const float s = 1.f - (1.f - kStreakMinChroma) * j / std::max(1, kStreakShareSteps - 1);
+      best = std::min(best, seen.distance(j == 0 ? mix : colorMix(mix, s, *white, 1.f - s, mix, 0.f)));
+    }
   }
   return best;
 }
 
-BallColorJudge::BallColorJudge(const FrameColors& frame, float min_brightness)
-    : f_(frame), min_brightness_(min_brightness) {
+BallColorJudge::BallColorJudge(const FrameColors& frame, float min_brightness, bool fade_streaks)
+    : f_(frame), min_brightness_(min_brightness), fade_streaks_(fade_streaks) {
   if (f_.white.valid)
     for (int k = 0; k < 3; ++k) white_[k] = f_.white.rgb[k];
 }
@@ -63,7 +69,7 @@ bool BallColorJudge::hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) co
 
 float BallColorJudge::distanceToOrange(const ClippedColor& seen, bool streak) const {
   auto classDistance = [&](const ColorVec& c) {
-    return streak ? streakColorDistance(seen, f_.color[kField], c) : seen.distance(c);
+    return streak ? streakColorDistance(seen, f_.color[kField], c, streakWhite()) : seen.distance(c);
   };
   float d = classDistance(f_.color[kOrange]);
   if (f_.mapped_orange) d = std::min(d, classDistance(*f_.mapped_orange));
@@ -81,7 +87,7 @@ double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* ne
   int nearest_neg = kField;
   for (int k : {kField, kWhite, kPink, kGreen, kYellow, kBlue}) {
     const float dk = k == kField || !streak ? seen.distance(f_.color[k])
-                                            : streakColorDistance(seen, f_.color[kField], f_.color[k]);
+                                            : streakColorDistance(seen, f_.color[kField], f_.color[k], streakWhite());
     if (dk < d_neg) d_neg = dk, nearest_neg = k;
   }
   if (nearest) *nearest = nearest_neg;

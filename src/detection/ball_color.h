@@ -39,8 +39,10 @@ struct FrameColors {
 class BallColorJudge final : public BallColorTest {
  public:
   // min_brightness: r + g + b below which no class-less color is a ball
-  // (darker peaks lie on robot tops).
-  BallColorJudge(const FrameColors& frame, float min_brightness);
+  // (darker peaks lie on robot tops). fade_streaks: a streak's chroma may
+  // have faded (kStreakMinChroma); not where a color near the lines' mix
+  // with the carpet lies on a marking: there a faded ball looks like it.
+  BallColorJudge(const FrameColors& frame, float min_brightness, bool fade_streaks = true);
 
   // The color's confidence, 0..1; 0: not the ball's. `nearest`: the
   // nearest of the other classes; `unexpected`: the confidence is only that
@@ -86,9 +88,12 @@ class BallColorJudge final : public BallColorTest {
   float distanceToOrange(const ClippedColor& seen, bool streak) const;
   bool withinFieldReach(const ClippedColor& seen) const;
   float saturation(const float rgb[3]) const;  // under the lines' white
+  // The white a streak's chroma fades to (streakColorDistance), if the lines gave one.
+  const ColorVec* streakWhite() const { return fade_streaks_ && f_.white.valid ? &f_.color[color_class::kWhite] : nullptr; }
 
   const FrameColors& f_;
   float min_brightness_;
+  bool fade_streaks_;
   float white_[3] = {1, 1, 1};
 };
 
@@ -98,8 +103,16 @@ class BallColorJudge final : public BallColorTest {
 constexpr float kStreakMinShare = 0.5f;
 constexpr int kStreakShareSteps = 6;
 
+// A streak's chroma may also have faded toward the frame's white by up to
+// this share kept: a compressed stream codes color at half resolution and
+// coarsest where the picture moves, so a fast ball covering half a chroma
+// sample keeps half its chroma (its brightness stays its own).
+constexpr float kStreakMinChroma = 0.5f;
+
 // Distance from a streak's color to the mix of `field` and `object` with the
-// object's share between kStreakMinShare and 1.
-float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object);
+// object's share between kStreakMinShare and 1; with `white`, that mix's
+// chroma kept between kStreakMinChroma and all of it.
+float streakColorDistance(const ClippedColor& seen, const ColorVec& field, const ColorVec& object,
+                          const ColorVec* white = nullptr);
 
 }  // namespace dv

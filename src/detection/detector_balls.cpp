@@ -36,6 +36,20 @@ double Detector::Impl::ballTemporal(BallCandidate& c, bool tracking) {
   return c.track >= 0 ? 1.0 : 0.85;
 }
 
+double Detector::Impl::courseConfidence(const FieldMm& p) const {
+  if (!have_frame || new_scene) return 0;
+  BallCandidate c;
+  c.pos = p;
+  ball_tracker.match(c);
+  if (c.track < 0 || c.kicked) return 0;
+  const BallTrack& bt = ball_tracker.tracks()[c.track];
+  // Faster than any robot: nothing but a ball moves so (a robot's dot, a
+  // robot not found, is not carpet either).
+  if (bt.history < 2 || !(bt.t[1] > bt.t[0]) || dist(bt.pos[1], bt.pos[0]) <= opt.max_robot_speed * (bt.t[1] - bt.t[0]))
+    return 0;
+  return 1 - dist(p, bt.predicted) / bt.gate;
+}
+
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
   // Strength reference: the median score of this frame's robot blobs.
@@ -76,6 +90,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_colors.mapped_orange.reset();
   if (color_map.valid()) ball_colors.mapped_orange = color_map.apply(classes[kOrange].reference);
   const BallColorJudge judge(ball_colors, min_ball_brightness);
+  const BallColorJudge judge_unfaded(ball_colors, min_ball_brightness, false);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
   // Rules: at least 80 % of the ball is outside every robot's top.
   auto insideRobot = [&](const FieldMm& p) {
@@ -115,7 +130,24 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     int nearest_neg = kField;
     bool unexpected = false;
-    const double color_conf = judge.confidence(seen, b.streak, &nearest_neg, &unexpected);
+    // On a marking, in a color near the lines' mix with the carpet, or
+    // where markings meet (more line than one line's mix): a faded ball's
+    // streak would look like the lines' own (BallColorJudge). A crossing
+    // under tungsten in H.264 at 8 Mbit/s, 34 from one line's mix, read as
+    // a faded ball.
+    const bool line_colored =
+        atCrossing(p) ||
+        (onMarking(p) &&
+         streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach);
+    const BallColorJudge& color_judge = line_colored ? judge_unfaded : judge;
+    double color_conf = color_judge.confidence(seen, b.streak, &nearest_neg, &unexpected);
+    // On a fast ball track's course the course is the evidence: a
+    // compressed stream keeps color at half resolution and coarsest where
+    // the picture moves, so a fast ball's streak may come out nearer to
+    // pink or yellow than to orange. Whatever is not carpet there continues
+    // the track, as sure as it lies near the prediction.
+    const double course = tracking && !judge.isCarpet(seen.rgb()) ? courseConfidence(p) : 0.0;
+    if (course > color_conf) color_conf = course, unexpected = false;
     if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
         for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
@@ -139,7 +171,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     if (unexpected && !b.streak) {
       if (!judge.hueClearlyBetweenPinkAndYellow(seen)) continue;
       if (colorReachesBeyondRim(i, judge)) {
-        const double as_streak = judge.confidence(seen, true);
+        const double as_streak = color_judge.confidence(seen, true);
         if (as_streak <= 0) continue;
         streak = true;
         color_conf_used = as_streak;
@@ -160,14 +192,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // mixed with the carpet looks like the ball mixed with it (a whole
     // center circle of false balls wherever no round ball hid them, 13..16
     // from the lines' mix; the goal posts' shaded faces 23..29; a fast ball
-    // kicked along the center line, 70). Only a track confirms it there.
-    // Not where the view is stretched: seen at a grazing angle a ball at
-    // rest is a streak itself (view_stretch.h).
-    if (streak && c.track < 0 &&
-        (onGoalWall(p) ||
-         (onMarking(p) &&
-          streakColorDistance(seen, ball_colors.color[kField], ball_colors.color[kWhite]) < kThinLineColorReach)) &&
-        !seenStretched(p))
+    // kicked along the center line, 70). Only a track it moved along
+    // confirms it there: a streak is a ball in motion, and one that stays
+    // put is the marking's own (the goal line's middle in H.265 at 3 Mbit/s
+    // under tungsten, a track of itself for 14 frames). Not where the view
+    // is stretched: seen at a grazing angle a ball at rest is a streak
+    // itself (view_stretch.h).
+    const bool moved_along_track = c.track >= 0 && !c.kicked && ball_tracker.tracks()[c.track].history >= 2 &&
+                                   dist(p, ball_tracker.tracks()[c.track].pos[1]) > 2 * opt.ball_radius;
+    if (streak && !moved_along_track && (onGoalWall(p) || line_colored) && !seenStretched(p))
       continue;
     c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
@@ -267,6 +300,10 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
 
 bool Detector::Impl::onMarking(const FieldMm& p) const {
   return field.distanceToMarkings(p) < opt.ball_radius + field.line_thickness / 2.0;
+}
+
+bool Detector::Impl::atCrossing(const FieldMm& p) const {
+  return field.markingsWithin(p, opt.ball_radius + field.line_thickness / 2.0) >= 2;
 }
 
 bool Detector::Impl::onGoalWall(const FieldMm& p) const {

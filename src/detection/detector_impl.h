@@ -242,10 +242,15 @@ struct Detector::Impl {
   // The ball candidate's temporal consistency: 1 where it continues a ball
   // track (or tracking is off), else less.
   double ballTemporal(BallCandidate& c, bool tracking);
+  // How surely a ball at `p` continues a ball track on its course, one
+  // moving faster than any robot: 1 at the prediction, 0 at the gate's
+  // edge; 0 off every such course.
+  double courseConfidence(const FieldMm& p) const;
   // Whether `p` (ball plane) lies within a ball radius of a field marking's
   // or of a goal wall's center line, and whether the camera sees it
   // stretched (a grazing view, view_stretch.h).
   bool onMarking(const FieldMm& p) const;
+  bool atCrossing(const FieldMm& p) const;  // within that of two markings
   bool onGoalWall(const FieldMm& p) const;
   bool seenStretched(const FieldMm& p) const;
   // This frame's colors for the ball's color judge (ball_color.h).

@@ -61,22 +61,34 @@ double distanceToSegment(FieldMm p, FieldMm a, FieldMm b) {
   return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
 }
 
+namespace {
+
+// On the arc's span: the distance to its circle; else to its nearer end.
+double distanceToArc(FieldMm p, const FieldArc& a) {
+  double angle = std::atan2(p.y - a.center.y, p.x - a.center.x) - a.a1;
+  angle -= 2 * kPi * std::floor(angle / (2 * kPi));
+  if (angle <= a.span()) return std::abs(std::hypot(p.x - a.center.x, p.y - a.center.y) - a.radius);
+  double best = std::numeric_limits<double>::infinity();
+  for (double e : {a.a1, a.a2})
+    best = std::min(best, std::hypot(p.x - a.center.x - a.radius * std::cos(e),
+                                     p.y - a.center.y - a.radius * std::sin(e)));
+  return best;
+}
+
+}  // namespace
+
 double FieldModel::distanceToMarkings(FieldMm p) const {
   double best = std::numeric_limits<double>::infinity();
   for (const FieldLine& l : lines) best = std::min(best, distanceToSegment(p, l.p1, l.p2));
-  for (const FieldArc& a : arcs) {
-    // On the arc's span: the distance to its circle; else to its nearer end.
-    double angle = std::atan2(p.y - a.center.y, p.x - a.center.x) - a.a1;
-    angle -= 2 * kPi * std::floor(angle / (2 * kPi));
-    if (angle <= a.span()) {
-      best = std::min(best, std::abs(std::hypot(p.x - a.center.x, p.y - a.center.y) - a.radius));
-    } else {
-      for (double e : {a.a1, a.a2})
-        best = std::min(best, std::hypot(p.x - a.center.x - a.radius * std::cos(e),
-                                         p.y - a.center.y - a.radius * std::sin(e)));
-    }
-  }
+  for (const FieldArc& a : arcs) best = std::min(best, distanceToArc(p, a));
   return best;
+}
+
+int FieldModel::markingsWithin(FieldMm p, double reach) const {
+  int n = 0;
+  for (const FieldLine& l : lines) n += distanceToSegment(p, l.p1, l.p2) < reach;
+  for (const FieldArc& a : arcs) n += distanceToArc(p, a) < reach;
+  return n;
 }
 
 double FieldModel::distanceToGoalWalls(FieldMm p) const {

@@ -95,6 +95,9 @@ struct FieldModel {
   // Distance (mm) from p to the nearest marking's center line (a line or
   // an arc); infinity where there are none.
   double distanceToMarkings(FieldMm p) const;
+  // How many markings (lines and arcs) pass within `reach` mm of p: two or
+  // more where they meet.
+  int markingsWithin(FieldMm p, double reach) const;
 
   // The goals' walls (the rules: 20 mm thick; goal_depth from the goal
   // line's outer edge to the back wall's inner face): the distance (mm)
