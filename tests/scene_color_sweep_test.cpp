@@ -19,14 +19,6 @@ namespace {
 
 using namespace dv::test;
 
-void cast(SceneSpec& s, Rgb white_balance, double saturation = 1, double gamma = 1) {
-  s.lighting.white_balance = white_balance;
-  s.lighting.saturation = saturation;
-  s.lighting.gamma = gamma;
-}
-
-const Rgb kTungsten{1.6, 1.0, 0.6}, kColdLed{0.7, 1.0, 1.7};
-
 // A focused test's placements of one condition (half: 1224 x 1024, else
 // 2448 x 2048), each alone at 1.000 in every column the table reports.
 void expectHeldAt(const Condition& c, std::initializer_list<int> placements, bool half) {

@@ -21,6 +21,15 @@ namespace dv::test {
 constexpr int kWidth = 2448, kHeight = 2048;
 const FieldPoint kTarget{-2250, 0, 0};  // the preset's view center
 
+// A camera's color cast: its white balance gains, saturation and gamma.
+inline void cast(SceneSpec& s, Rgb white_balance, double saturation = 1, double gamma = 1) {
+  s.lighting.white_balance = white_balance;
+  s.lighting.saturation = saturation;
+  s.lighting.gamma = gamma;
+}
+
+const Rgb kTungsten{1.6, 1.0, 0.6}, kColdLed{0.7, 1.0, 1.7};
+
 // A camera `height` mm above the ground looking at the preset's view center
 // with `tilt` rad from the vertical, its view turned by `yaw` rad.
 inline SceneCamera tiltedCamera(double height, double tilt, double yaw, double focal, double distortion,

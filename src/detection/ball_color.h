@@ -89,7 +89,9 @@ class BallColorJudge final : public BallColorTest {
   bool withinFieldReach(const ClippedColor& seen) const;
   float saturation(const float rgb[3]) const;  // under the lines' white
   // The white a streak's chroma fades to (streakColorDistance), if the lines gave one.
-  const ColorVec* streakWhite() const { return fade_streaks_ && f_.white.valid ? &f_.color[color_class::kWhite] : nullptr; }
+  const ColorVec* streakWhite() const {
+    return fade_streaks_ && f_.white.valid ? &f_.color[color_class::kWhite] : nullptr;
+  }
 
   const FrameColors& f_;
   float min_brightness_;

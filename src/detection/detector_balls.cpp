@@ -100,12 +100,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     return false;
   };
-  // Whether another strong blob lies within a pattern's reach of blob i.
+  // Whether other strong blobs lie within a pattern's reach of blob i: two
+  // or more, as a pattern's side dots would (one may be clutter: a sun-lit
+  // carpet peaked 70 mm from the ball under a green cast).
   auto dotsAround = [&](int i) {
     const double reach = RobotPatternGeometry::kSideBlobDistance + RobotPatternGeometry::kSideBlobRadius;
+    int n = 0;
     for (int j = 0; j < n_strong; ++j)
-      if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
-    return false;
+      n += j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach;
+    return n >= 2;
   };
   ColorVec field_sum;
   int field_n = 0;
@@ -169,7 +172,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     bool streak = b.streak;
     double color_conf_used = color_conf;
     if (unexpected && !b.streak) {
-      if (!judge.hueClearlyBetweenPinkAndYellow(seen)) continue;
+      if (!judge.hueClearlyBetweenPinkAndYellow(seen)) {
+        // In a marker's hue it may be a ball in that marker's color, as one
+        // nearer to that class: a ball in a sun patch under tungsten, its red
+        // clipped, reads as the yellow centers do.
+        if (nearest_neg == kYellow || nearest_neg == kPink) marker_colored.push_back({i, nearest_neg});
+        continue;
+      }
       if (colorReachesBeyondRim(i, judge)) {
         const double as_streak = color_judge.confidence(seen, true);
         if (as_streak <= 0) continue;
@@ -205,7 +214,14 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
     c.rank = streak ? c.confidence : color_conf_used * blobStrengthRatio(b.score, strength_ref) * temporal;
-    if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
+    if (c.confidence >= opt.min_ball_confidence) {
+      ball_cands.push_back(c);
+    } else if (!streak && (nearest_neg == kYellow || nearest_neg == kPink)) {
+      // Too little orange, nearest to a marker: judged as a ball in that
+      // marker's color (a ball clipped red in a sun patch under tungsten is
+      // as near to the yellow centers as to orange).
+      marker_colored.push_back({i, nearest_neg});
+    }
   }
   // Balls cut by the image border, which make no blob (border_balls.h).
   // Such a ball's own blob, where part of it peaked, lies inward of its
@@ -341,7 +357,11 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     // Within the class's reach (a line's false colors, a mix with the
     // carpet, are not), round and alone (no color of it beyond its rim),
     // and most of what lies around it carpet, not a robot's top.
-    if (!test.isBall(b.rgb) || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
+    // (An over-exposed blob by its rim, as findBalls judged it.)
+    const bool colored = ClippedColor(b.rgb).saturated()
+                             ? b.has_unclipped && (test.isBall(b.unclipped_rgb) || test.isRim(b.unclipped_rgb))
+                             : test.isBall(b.rgb);
+    if (!colored || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
     const double carpet = carpetAroundBall(frame_view, ball_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;

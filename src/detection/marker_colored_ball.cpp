@@ -28,6 +28,14 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
+bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
+  const ClippedColor seen(rgb);
+  if (seen.saturated()) return false;
+  const float d = streakColorDistance(seen, f_.color[kField], f_.color[k_]);
+  const float reach = std::max(kClassSpreads * f_.spread[k_], kMinClassRadius);
+  return d <= reach && d < seen.distance(f_.color[kField]);
+}
+
 double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness) {
   if (!frame.image || frame.image->empty()) return 0;

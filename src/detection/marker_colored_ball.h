@@ -23,6 +23,9 @@ class MarkerColoredBallTest final : public BallColorTest {
   MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class)
       : f_(frame), judge_(judge), k_(marker_class) {}
   bool isBall(const float rgb[3]) const override;
+  // An over-exposed ball's unclipped rim (unclippedDiscColor): the marker's
+  // color mixed with the carpet around it, within the class's reach.
+  bool isRim(const float rgb[3]) const;
   bool isCarpet(const float rgb[3]) const override { return judge_.isCarpet(rgb); }
 
  private:
