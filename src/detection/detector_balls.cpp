@@ -100,15 +100,12 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     }
     return false;
   };
-  // Whether other strong blobs lie within a pattern's reach of blob i: two
-  // or more, as a pattern's side dots would (one may be clutter: a sun-lit
-  // carpet peaked 70 mm from the ball under a green cast).
+  // Whether another strong blob lies within a pattern's reach of blob i.
   auto dotsAround = [&](int i) {
     const double reach = RobotPatternGeometry::kSideBlobDistance + RobotPatternGeometry::kSideBlobRadius;
-    int n = 0;
     for (int j = 0; j < n_strong; ++j)
-      n += j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach;
-    return n >= 2;
+      if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
+    return false;
   };
   ColorVec field_sum;
   int field_n = 0;
