@@ -67,9 +67,15 @@ bool BallColorJudge::hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) co
   return hs.hue > hs.pink + hs.noise && hs.hue < hs.yellow - hs.noise;
 }
 
+const ColorVec* BallColorJudge::streakWhite(const ClippedColor& seen) const {
+  const float* rgb = seen.rgb();
+  if (!fade_streaks_ || !f_.white.valid || rgb[0] + rgb[1] + rgb[2] < min_brightness_) return nullptr;
+  return &f_.color[kWhite];
+}
+
 float BallColorJudge::distanceToOrange(const ClippedColor& seen, bool streak) const {
   auto classDistance = [&](const ColorVec& c) {
-    return streak ? streakColorDistance(seen, f_.color[kField], c, streakWhite()) : seen.distance(c);
+    return streak ? streakColorDistance(seen, f_.color[kField], c, streakWhite(seen)) : seen.distance(c);
   };
   float d = classDistance(f_.color[kOrange]);
   if (f_.mapped_orange) d = std::min(d, classDistance(*f_.mapped_orange));
@@ -87,7 +93,7 @@ double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* ne
   int nearest_neg = kField;
   for (int k : {kField, kWhite, kPink, kGreen, kYellow, kBlue}) {
     const float dk = k == kField || !streak ? seen.distance(f_.color[k])
-                                            : streakColorDistance(seen, f_.color[kField], f_.color[k], streakWhite());
+                                            : streakColorDistance(seen, f_.color[kField], f_.color[k], streakWhite(seen));
     if (dk < d_neg) d_neg = dk, nearest_neg = k;
   }
   if (nearest) *nearest = nearest_neg;

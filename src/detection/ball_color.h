@@ -88,10 +88,11 @@ class BallColorJudge final : public BallColorTest {
   float distanceToOrange(const ClippedColor& seen, bool streak) const;
   bool withinFieldReach(const ClippedColor& seen) const;
   float saturation(const float rgb[3]) const;  // under the lines' white
-  // The white a streak's chroma fades to (streakColorDistance), if the lines gave one.
-  const ColorVec* streakWhite() const {
-    return fade_streaks_ && f_.white.valid ? &f_.color[color_class::kWhite] : nullptr;
-  }
+  // The white a streak's chroma fades to (streakColorDistance), if the lines
+  // gave one and the streak is as bright as a ball may be (min_brightness:
+  // a stream keeps the ball's brightness; a shadow's chromaticity says
+  // little, and faded it read as a ball's under a green cast).
+  const ColorVec* streakWhite(const ClippedColor& seen) const;
 
   const FrameColors& f_;
   float min_brightness_;
