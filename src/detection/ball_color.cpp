@@ -92,8 +92,9 @@ double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* ne
   float d_neg = std::numeric_limits<float>::max();
   int nearest_neg = kField;
   for (int k : {kField, kWhite, kPink, kGreen, kYellow, kBlue}) {
-    const float dk = k == kField || !streak ? seen.distance(f_.color[k])
-                                            : streakColorDistance(seen, f_.color[kField], f_.color[k], streakWhite(seen));
+    const float dk = k == kField || !streak
+                         ? seen.distance(f_.color[k])
+                         : streakColorDistance(seen, f_.color[kField], f_.color[k], streakWhite(seen));
     if (dk < d_neg) d_neg = dk, nearest_neg = k;
   }
   if (nearest) *nearest = nearest_neg;
