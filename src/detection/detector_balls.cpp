@@ -36,18 +36,14 @@ double Detector::Impl::ballTemporal(BallCandidate& c, bool tracking) {
   return c.track >= 0 ? 1.0 : 0.85;
 }
 
-double Detector::Impl::courseConfidence(const FieldMm& p) const {
-  if (!have_frame || new_scene) return 0;
-  BallCandidate c;
-  c.pos = p;
-  ball_tracker.match(c);
+double Detector::Impl::courseConfidence(const BallCandidate& c) const {
   if (c.track < 0 || c.kicked) return 0;
   const BallTrack& bt = ball_tracker.tracks()[c.track];
   // Faster than any robot: nothing but a ball moves so (a robot's dot, a
   // robot not found, is not carpet either).
   if (bt.history < 2 || !(bt.t[1] > bt.t[0]) || dist(bt.pos[1], bt.pos[0]) <= opt.max_robot_speed * (bt.t[1] - bt.t[0]))
     return 0;
-  return 1 - dist(p, bt.predicted) / bt.gate;
+  return 1 - dist(c.pos, bt.predicted) / bt.gate;
 }
 
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
@@ -107,6 +103,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
     return false;
   };
+  // A blob nearest to a marker's class may be a ball in that marker's
+  // color (a ball clipped in a sun patch): addMarkerColoredBalls judges it.
+  auto keepIfMarkerColored = [&](int i, int nearest) {
+    if (nearest == kYellow || nearest == kPink) marker_colored.push_back({i, nearest});
+  };
   ColorVec field_sum;
   int field_n = 0;
   marker_colored.clear();
@@ -146,14 +147,18 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // the picture moves, so a fast ball's streak may come out nearer to
     // pink or yellow than to orange. Whatever is not carpet there continues
     // the track, as sure as it lies near the prediction.
-    const double course = tracking && !judge.isCarpet(seen.rgb()) ? courseConfidence(p) : 0.0;
+    BallCandidate c;
+    c.blob = i;
+    c.pos = p;
+    const double temporal = ballTemporal(c, tracking);  // matches c to a track
+    const double course = judge.isCarpet(seen.rgb()) ? 0.0 : courseConfidence(c);
     if (course > color_conf) color_conf = course, unexpected = false;
     if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
-        for (int c = 0; c < 3; ++c) field_sum.c[c] += b.color.c[c];
+        for (int k = 0; k < 3; ++k) field_sum.c[k] += b.color.c[k];
         ++field_n;
-      } else if (!b.streak && (nearest_neg == kYellow || nearest_neg == kPink) && !insideRobot(p)) {
-        marker_colored.push_back({i, nearest_neg});
+      } else if (!b.streak && !insideRobot(p)) {
+        keepIfMarkerColored(i, nearest_neg);
       }
       continue;
     }
@@ -173,7 +178,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         // In a marker's hue it may be a ball in that marker's color, as one
         // nearer to that class: a ball in a sun patch under tungsten, its red
         // clipped, reads as the yellow centers do.
-        if (nearest_neg == kYellow || nearest_neg == kPink) marker_colored.push_back({i, nearest_neg});
+        keepIfMarkerColored(i, nearest_neg);
         continue;
       }
       if (colorReachesBeyondRim(i, judge)) {
@@ -186,11 +191,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // A streak's score is a shape measure of its own scale (streak_score.h).
     const double strength =
         b.streak ? std::min(1.0, b.score / kStreakFullStrength) : blobStrength(b.score, strength_ref);
-    BallCandidate c;
-    c.blob = i;
-    c.pos = p;
     c.streak = streak;
-    const double temporal = ballTemporal(c, tracking);
     // An untracked streak on a goal's wall, or on a field marking in a color
     // near the lines' mix with the carpet, is no ball: a thin line's
     // demosaiced false colors (lines of 1 to 2 px at 1224 x 1024) make
@@ -213,11 +214,10 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.rank = streak ? c.confidence : color_conf_used * blobStrengthRatio(b.score, strength_ref) * temporal;
     if (c.confidence >= opt.min_ball_confidence) {
       ball_cands.push_back(c);
-    } else if (!streak && (nearest_neg == kYellow || nearest_neg == kPink)) {
-      // Too little orange, nearest to a marker: judged as a ball in that
-      // marker's color (a ball clipped red in a sun patch under tungsten is
-      // as near to the yellow centers as to orange).
-      marker_colored.push_back({i, nearest_neg});
+    } else if (!streak) {
+      // Too little orange, nearest to a marker: a ball clipped red in a sun
+      // patch under tungsten is as near to the yellow centers as to orange.
+      keepIfMarkerColored(i, nearest_neg);
     }
   }
   // Balls cut by the image border, which make no blob (border_balls.h).

@@ -240,12 +240,12 @@ struct Detector::Impl {
   std::vector<MarkerColoredBlob> marker_colored;
   void addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking);
   // The ball candidate's temporal consistency: 1 where it continues a ball
-  // track (or tracking is off), else less.
+  // track (or tracking is off), else less. Matches c to its track.
   double ballTemporal(BallCandidate& c, bool tracking);
-  // How surely a ball at `p` continues a ball track on its course, one
-  // moving faster than any robot: 1 at the prediction, 0 at the gate's
-  // edge; 0 off every such course.
-  double courseConfidence(const FieldMm& p) const;
+  // How surely a candidate ballTemporal matched continues its track on its
+  // course, one moving faster than any robot: 1 at the prediction, 0 at the
+  // gate's edge; 0 off every such course.
+  double courseConfidence(const BallCandidate& c) const;
   // Whether `p` (ball plane) lies within a ball radius of a field marking's
   // or of a goal wall's center line, and whether the camera sees it
   // stretched (a grazing view, view_stretch.h).
