@@ -107,5 +107,21 @@ TEST(BallTracker, TracksSurviveShortGapsOnly) {
   }
 }
 
+// Only a track faster than any robot is expected anywhere in the next
+// frame, where its course takes it (also across a frame it was missed in).
+TEST(BallTracker, OnlyAFastBallIsExpectedAndOnItsCourse) {
+  BallTracker tracker(options());
+  FieldMm at[4];
+  frame(tracker, 0, {ball(0, 0), ball(1000, 1000)});
+  frame(tracker, kDt, {ball(100, 0), ball(1030, 1000)});  // 6 m/s and 1.8 m/s
+  ASSERT_EQ(tracker.expectedFastBalls(2 * kDt, at, 4), 1);
+  EXPECT_NEAR(at[0].x, 200, 1e-6);
+  EXPECT_NEAR(at[0].y, 0, 1e-6);
+  frame(tracker, 2 * kDt, {ball(1060, 1000)});  // the fast ball missed once
+  ASSERT_EQ(tracker.expectedFastBalls(3 * kDt, at, 4), 1);
+  EXPECT_NEAR(at[0].x, 300, 1e-6);
+  EXPECT_EQ(tracker.expectedFastBalls(3 * kDt, at, 0), 0);  // no room
+}
+
 }  // namespace
 }  // namespace dv

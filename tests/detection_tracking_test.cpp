@@ -402,6 +402,64 @@ TEST(DetectionTracking, AFastBallsStreakInAnotherColorContinuesItsCourse) {
       });
 }
 
+// A compressed stream can wash a fast ball out to a faint smear, a weak
+// peak (kept by the pixel pipeline where expectedBalls says), or to a blob
+// of a color no class explains. On the fast track's course either
+// continues the track; the same peak off the course is no ball, and
+// neither is the blob.
+TEST(DetectionTracking, AWeakPeakOnAFastBallsCourseContinuesIt) {
+  const FieldMm rest{-2250, 0};
+  constexpr ColorRef kWashed{160, 140, 80};  // no class's, nor clearly the ball's hue
+  kickedBall(
+      rest, 10, 500,
+      [&](SceneBuilder& s, int f) {
+        if (f == kKick + 3 || f == kKick + 4) {
+          const FieldPoint at{s.balls.back().x, s.balls.back().y, 21.5};
+          s.list.blobs.pop_back();
+          s.addBlob(at, kWashed, 0.15f, true);
+          s.addBlob({at.x, at.y + 1500, 21.5}, kWashed, 0.15f, true);
+          s.addBlob({at.x + 1500, at.y, 21.5}, kWashed, 0.5f);
+        }
+        if (f == kKick + 5) {  // a strong blob: no class explains it, the course does
+          const FieldPoint at{s.balls.back().x, s.balls.back().y, 21.5};
+          s.list.blobs.pop_back();
+          s.addBlob(at, kWashed, 0.5f);
+        }
+      },
+      [](const Detections& out, FieldMm ball, int f) {
+        ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+      });
+}
+
+// The detector tells the pixel pipeline where a fast ball will be next,
+// on the blobs' plane (where its ray meets it), and nothing for a slow one.
+TEST(DetectionTracking, TheNextPlaceOfAFastBallIsExpectedOnTheBlobsPlane) {
+  const CameraModel cam(test::topDownCamera());
+  for (double speed : {6000.0, 2000.0}) {
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    ExpectedPlaces expected;
+    for (int f = 0; f < 3; ++f) {
+      SceneBuilder s(cam, 40 + f, {}, 0);
+      s.addRobot({Team::Yellow, 1, {-3000, 1000}, 0});
+      s.addBall({-1000 + speed * f * kDt, -500});
+      det.process(s.list, f * kDt, out);
+      det.expectedBalls(expected);
+    }
+    if (speed < 4000) {
+      EXPECT_EQ(expected.n, 0);
+      continue;
+    }
+    ASSERT_EQ(expected.n, 1);
+    SceneBuilder next(cam, 0, {}, 0);
+    next.addBall({-1000 + speed * 3 * kDt, -500});
+    EXPECT_NEAR(expected.at[0].x, next.list.blobs[0].position.x, 2);
+    EXPECT_NEAR(expected.at[0].y, next.list.blobs[0].position.y, 2);
+  }
+}
+
 // A streak that stays put on a goal wall (or a marking) continues no
 // track: in H.265 under tungsten the goal line's middle read as a faded
 // ball's streak frame after frame, a track of itself once something there

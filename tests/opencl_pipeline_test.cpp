@@ -428,6 +428,33 @@ INSTANTIATE_TEST_SUITE_P(
                       FrameCase{"gbrg_full_yuv_circle_dark", BayerPattern::GBRG, ColorSpace::YUV, BlobScoreKind::CircleMin, 0.5, 1, BayerSampling::Full}),
     [](const auto& info) { return std::string(info.param.name); });
 
+// Where a fast ball is expected, a faint disc far from every blob is a weak
+// peak on both backends, the same one.
+TEST(OpenClFrames, AFaintDiscWhereAFastBallIsExpectedIsTheSameWeakPeak) {
+  DV_REQUIRE_OPENCL();
+  const auto cam = smallCamera(BayerPattern::RGGB);
+  const auto field = FieldModel::divisionB();
+  PaintedScene scene;
+  const FieldMm far{1400.2, 820.7};
+  scene.discs.push_back({{800.3, 500.6}, 21.5, test::kOrange});
+  scene.discs.push_back({far, 20, {47, 119, 54}});
+  const cv::Mat raw = scene.render(cam, BayerPattern::RGGB);
+  PipelineOptions opt;
+  CpuPipeline cpu(cam, field, fullSearch(opt));
+  OpenClPipeline ocl(cam, field, opt, *testDevice());
+  ExpectedPlaces expected;
+  expected.at[expected.n++] = {far.x - 25, far.y + 30};
+  cpu.expect(expected);
+  ocl.expect(expected);
+  BlobList a, b;
+  ASSERT_TRUE(cpu.process(raw, a)) << cpu.lastError();
+  ASSERT_TRUE(ocl.process(raw, b)) << ocl.lastError();
+  int hits = 0;
+  for (const auto& w : b.weak) hits += std::hypot(w.position.x - far.x, w.position.y - far.y) < 3;
+  EXPECT_EQ(hits, 1);
+  expectSameBlobs(a, b, "a faint disc where a fast ball is expected");
+}
+
 // A rendered scene (ray-cast renderer, carpet texture, lighting, noise, lens
 // blur) through both backends, and the detector on both blob lists.
 TEST(OpenClScenes, RenderedSceneGivesTheSameBlobsAndDetections) {

@@ -389,5 +389,39 @@ TEST(PipelineBlobs, FaintDiscIsAWeakPeakOnlyNearABlob) {
   }
 }
 
+// Where the detector expects a fast ball, the same faint disc far from
+// every blob is a weak peak, on the full grid and in the coarse search;
+// the expectation holds until it is set again.
+TEST(PipelineBlobs, FaintDiscIsAWeakPeakWhereAFastBallIsExpected) {
+  const auto cam = test::topDownCamera(1000, 500, 150 + 2000, 1000, 640, 480);
+  PaintedScene s;
+  const FieldMm ball{800.3, 500.6}, far{1400.2, 820.7};
+  s.discs.push_back({ball, 21.5, test::kOrange});
+  s.discs.push_back({far, 20, {47, 119, 54}});  // scores 0.18
+  const cv::Mat raw = s.render(cam, BayerPattern::RGGB);
+  auto weakAtFar = [&](const BlobList& blobs) {
+    int hits = 0;
+    for (const auto& w : blobs.weak) hits += std::hypot(w.position.x - far.x, w.position.y - far.y) < 3;
+    return hits;
+  };
+  for (bool coarse : {true, false}) {
+    PipelineOptions opt;
+    opt.coarse_search = coarse;
+    CpuPipeline pipe(cam, FieldModel::divisionB(), opt);
+    BlobList blobs;
+    ExpectedPlaces expected;
+    expected.at[expected.n++] = {far.x + 30, far.y - 20};  // a prediction is never exact
+    pipe.expect(expected);
+    ASSERT_TRUE(pipe.process(raw, blobs)) << pipe.lastError();
+    ASSERT_EQ(blobs.blobs.size(), 1u);
+    EXPECT_EQ(weakAtFar(blobs), 1) << (coarse ? "coarse search" : "full grid");
+    ASSERT_TRUE(pipe.process(raw, blobs));
+    EXPECT_EQ(weakAtFar(blobs), 1) << (coarse ? "coarse search" : "full grid") << ", the next frame";
+    pipe.expect({});
+    ASSERT_TRUE(pipe.process(raw, blobs));
+    EXPECT_EQ(weakAtFar(blobs), 0) << (coarse ? "coarse search" : "full grid") << ", expectation withdrawn";
+  }
+}
+
 }  // namespace
 }  // namespace dv

@@ -45,12 +45,16 @@ bool CameraProcessor::process(const Frame& frame, Detections& out, std::string& 
   pipeline_ms_ = msBetween(t0, t1);
   if (!ok) {
     why = pipeline_->lastError();
+    pipeline_->expect({});
     out.balls.clear();
     out.robots.clear();
     detection_ms_ = 0;
     return false;
   }
   detector_.process(blobs_, frame.t_capture, out, FrameView{&frame.image, pipeline_->options().bayer});
+  // Where a fast ball will be: the next frame keeps weak peaks there.
+  detector_.expectedBalls(expected_);
+  pipeline_->expect(expected_);
   detection_ms_ = msBetween(t1, Clock::now());
   return true;
 }

@@ -54,6 +54,7 @@ class CameraProcessor {
   std::unique_ptr<PixelPipeline> pipeline_;
   Detector detector_;
   BlobList blobs_;
+  ExpectedPlaces expected_;
   double pipeline_ms_ = 0;
   double detection_ms_ = 0;
 };

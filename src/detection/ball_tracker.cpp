@@ -34,15 +34,19 @@ FieldMm BallTracker::reflectAtWalls(FieldMm from, FieldMm p) const {
   return {mirror(from.x, p.x, a.x_min + r, a.x_max - r), mirror(from.y, p.y, a.y_min + r, a.y_max - r)};
 }
 
+FieldMm BallTracker::straightOn(const BallTrack& bt, double dt) const {
+  const double f = dt / (bt.t[1] - bt.t[0]);
+  return reflectAtWalls(bt.pos[1], {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
+                                    bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)});
+}
+
 void BallTracker::predict(double t, const FieldMm* robots, int n) {
   for (auto& bt : tracks_) {
     bt.predicted = bt.pos[1];
     const double dt = std::max(0.0, t - bt.t[1]);
     const double reach = opt_.max_ball_speed * std::min(dt, kMaxGap);
     if (bt.history >= 2 && bt.t[1] > bt.t[0]) {
-      const double f = dt / (bt.t[1] - bt.t[0]);
-      bt.predicted = reflectAtWalls(bt.pos[1], {bt.pos[1].x + f * (bt.pos[1].x - bt.pos[0].x),
-                                                bt.pos[1].y + f * (bt.pos[1].y - bt.pos[0].y)});
+      bt.predicted = straightOn(bt, dt);
       bt.gate = kMinGate + 0.5 * reach;
     } else {
       bt.gate = kMinGate + reach;
@@ -56,6 +60,18 @@ void BallTracker::predict(double t, const FieldMm* robots, int n) {
       if (dist(bt.pos[1], robots[i]) < touch) bt.kick_gate = kMinGate + reach;
     bt.confirmed = false;
   }
+}
+
+bool BallTracker::isFast(const BallTrack& bt) const {
+  return bt.history >= 2 && bt.t[1] > bt.t[0] &&
+         dist(bt.pos[1], bt.pos[0]) > opt_.max_robot_speed * (bt.t[1] - bt.t[0]);
+}
+
+int BallTracker::expectedFastBalls(double t_next, FieldMm* out, int max) const {
+  int n = 0;
+  for (const BallTrack& bt : tracks_)
+    if (n < max && isFast(bt)) out[n++] = straightOn(bt, std::max(0.0, t_next - bt.t[1]));
+  return n;
 }
 
 void BallTracker::match(BallCandidate& c) const {

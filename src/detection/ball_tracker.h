@@ -72,6 +72,13 @@ class BallTracker {
   // that continued none start new ones.
   void update(double t, std::vector<BallCandidate>& cands);
 
+  // Whether a track moves faster than any robot (opt max_robot_speed) over
+  // its last two positions: nothing but a ball moves so.
+  bool isFast(const BallTrack& bt) const;
+  // Where the fast tracks will be at `t_next`, straight on and mirrored at
+  // the walls (as predict); up to `max` into `out`, their count returned.
+  int expectedFastBalls(double t_next, FieldMm* out, int max) const;
+
   // Whether c, continuing no track, lies on the course of a ball tracked
   // at t within the distance it covers in kEchoTime, ranked below it.
   bool isEcho(const BallCandidate& c, double t) const;
@@ -85,6 +92,8 @@ class BallTracker {
 
  private:
   FieldMm reflectAtWalls(FieldMm from, FieldMm p) const;
+  // A track with two positions at distinct times, dt after its last one.
+  FieldMm straightOn(const BallTrack& bt, double dt) const;
 
   BallTrackerOptions opt_;
   std::vector<BallTrack> tracks_;

@@ -167,6 +167,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   health.yellow_blue = colorDistance(classes[kYellow].color, classes[kBlue].color);
   health.green_pink = colorDistance(classes[kGreen].color, classes[kPink].color);
   health.lines = neutral;
+  frame_interval = have_frame && !new_scene ? t - last_t : 0;
   last_t = t;
   have_frame = true;
 }
@@ -321,6 +322,17 @@ void Detector::setOptions(const DetectorOptions& opt) {
   opt_ = opt;
   impl_->setOptions(opt);
 }
+
+void Detector::Impl::expectedBalls(ExpectedPlaces& out) const {
+  out.n = 0;
+  if (!opt.tracking || !have_frame || !(frame_interval > 0)) return;
+  FieldMm at_ball[ExpectedPlaces::kMax];
+  const int n = ball_tracker.expectedFastBalls(last_t + frame_interval, at_ball, ExpectedPlaces::kMax);
+  for (int k = 0; k < n; ++k)
+    if (alongRay(at_ball[k], opt.ball_radius, plane_height, out.at[out.n])) ++out.n;
+}
+
+void Detector::expectedBalls(ExpectedPlaces& out) const { impl_->expectedBalls(out); }
 
 void Detector::process(const BlobList& blobs, double t_capture, Detections& out, const FrameView& frame) {
   impl_->process(blobs, t_capture, out, frame);

@@ -191,6 +191,13 @@ class Detector {
   void process(const BlobList& blobs, double t_capture, Detections& out,
                const FrameView& frame = {});
 
+  // Where a fast ball (a track faster than any robot) will be in the next
+  // frame, if it comes one frame interval after the last, on the last
+  // frame's rectification plane; for the pixel pipeline, which then keeps
+  // weak peaks there, as a compressed stream can wash such a ball out to
+  // one (PixelPipeline::expect). None without tracking.
+  void expectedBalls(ExpectedPlaces& out) const;
+
   const DetectorOptions& options() const { return opt_; }
   // The last processed frame's health record.
   const DetectionHealth& health() const;

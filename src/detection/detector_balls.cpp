@@ -41,8 +41,7 @@ double Detector::Impl::courseConfidence(const BallCandidate& c) const {
   const BallTrack& bt = ball_tracker.tracks()[c.track];
   // Faster than any robot: nothing but a ball moves so (a robot's dot, a
   // robot not found, is not carpet either).
-  if (bt.history < 2 || !(bt.t[1] > bt.t[0]) || dist(bt.pos[1], bt.pos[0]) <= opt.max_robot_speed * (bt.t[1] - bt.t[0]))
-    return 0;
+  if (!ball_tracker.isFast(bt)) return 0;
   return 1 - dist(c.pos, bt.predicted) / bt.gate;
 }
 
@@ -146,13 +145,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // compressed stream keeps color at half resolution and coarsest where
     // the picture moves, so a fast ball's streak may come out nearer to
     // pink or yellow than to orange. Whatever is not carpet there continues
-    // the track, as sure as it lies near the prediction.
+    // the track, as sure as it lies near the prediction; so does a color no
+    // class explains, whose hue the ball-color rules would judge (a fast
+    // ball washed out to gray under a cold cast in H.264).
     BallCandidate c;
     c.blob = i;
     c.pos = p;
     const double temporal = ballTemporal(c, tracking);  // matches c to a track
     const double course = judge.isCarpet(seen.rgb()) ? 0.0 : courseConfidence(c);
-    if (course > color_conf) color_conf = course, unexpected = false;
+    if (course > 0 && (unexpected || course > color_conf)) color_conf = course, unexpected = false;
     if (color_conf <= 0) {
       if (nearest_neg == kField && !b.streak) {
         for (int k = 0; k < 3; ++k) field_sum.c[k] += b.color.c[k];
@@ -220,6 +221,28 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       keepIfMarkerColored(i, nearest_neg);
     }
   }
+  // Weak peaks on a fast ball's course, kept by the pixel pipeline where
+  // expectedBalls said: a compressed stream can wash a fast ball out to one
+  // (H.264 at 3 Mbit/s under a cold cast: a gray smear in every other
+  // frame, scoring 0.06..0.24). Only the course vouches for such a peak:
+  // not carpet, where no blob continued the track.
+  auto trackTaken = [&](int track) {
+    for (const BallCandidate& o : ball_cands)
+      if (o.track == track && !o.kicked) return true;
+    return false;
+  };
+  for (int i = n_strong; tracking && i < static_cast<int>(blobs.size()); ++i) {
+    const FrameBlob& b = blobs[i];
+    if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb)) continue;
+    BallCandidate c;
+    c.blob = i;
+    c.pos = b.at_ball;
+    ballTemporal(c, tracking);
+    const double course = courseConfidence(c);
+    if (course < opt.min_ball_confidence || trackTaken(c.track) || insideRobot(c.pos)) continue;
+    c.confidence = c.rank = course;
+    ball_cands.push_back(c);
+  }
   // Balls cut by the image border, which make no blob (border_balls.h).
   // Such a ball's own blob, where part of it peaked, lies inward of its
   // center: the fit of the visible arc stands for it.
@@ -261,7 +284,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // ball's is its visible part's, judged by pixels.)
   // (A ball in a marker's color is no sample of orange.)
   // (Nor is an over-exposed one's.)
+  // (Nor is a weak peak the course vouched for.)
   if (!ball_cands.empty() && ball_cands[0].confidence >= 0.5 && ball_cands[0].blob >= 0 &&
+      ball_cands[0].blob < n_strong &&
       !ball_cands[0].streak && !marker_colored_ball && !ClippedColor(blobs[ball_cands[0].blob].rgb).saturated())
     classes[kOrange].update(blobs[ball_cands[0].blob].color, fp, fr);
   if (field_n > 0) {
@@ -285,9 +310,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     std::optional<ImagePx> px;
     if (bb) {
       px = bb->center;
-    } else {
+    } else if (c.blob < n_strong) {
       const FieldMm at_plane = raw_positions[c.blob];
       px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
+    } else {
+      px = camera.fieldToImage({c.pos.x, c.pos.y, opt.ball_radius});
     }
     // The ball's center from its silhouette (ball_silhouette.h). A far
     // ball seen from the side often peaks only as a streak; a real streak's
@@ -371,3 +398,4 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
 }
 
 }  // namespace dv
+

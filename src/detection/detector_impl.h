@@ -77,6 +77,8 @@ struct Detector::Impl {
   std::vector<uint8_t> labels;
   std::vector<float> score_buf;
   double last_t = 0;
+  double frame_interval = 0;  // between the last two related frames, s
+  void expectedBalls(ExpectedPlaces& out) const;
   bool have_frame = false;
   bool new_scene = false;  // this frame dropped the history (unrelated scene)
 

@@ -15,6 +15,7 @@ class CpuPixelPipeline final : public PixelPipeline {
   CpuPixelPipeline(const CameraModel& camera, const FieldModel& field, const PipelineOptions& opt)
       : cpu_(camera, field, opt) {}
   bool process(const cv::Mat& raw, BlobList& out) override { return cpu_.process(raw, out); }
+  void expect(const ExpectedPlaces& places) override { cpu_.expect(places); }
   const std::string& lastError() const override { return cpu_.lastError(); }
   const RectifiedGrid& grid() const override { return cpu_.grid(); }
   const StageTimes& times() const override { return cpu_.times(); }

@@ -30,6 +30,9 @@ class PixelPipeline {
   // raw: CV_8UC1 Bayer or CV_8UC3 BGR of the calibration's image size. False
   // (out empty, lastError() set) on a bad frame or a device failure.
   virtual bool process(const cv::Mat& raw, BlobList& out) = 0;
+  // Places where weak peaks also count from the next frame on, until set
+  // again (blob.h).
+  virtual void expect(const ExpectedPlaces& places) = 0;
   virtual const std::string& lastError() const = 0;
   virtual const RectifiedGrid& grid() const = 0;
   // Stage times of the last frame (OpenCL: from profiling events; total_ms is

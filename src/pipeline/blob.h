@@ -27,6 +27,16 @@ struct NeutralColor {
   int samples = 0;  // line samples the estimate rests on
 };
 
+// Where the detector expects a faint object in the next frame: a fast
+// ball's place on its course, on the rectification plane (field mm). A
+// compressed stream can wash such a ball out to a weak peak; weak peaks
+// there count as if near a blob (PixelPipeline::expect).
+struct ExpectedPlaces {
+  static constexpr int kMax = 4;
+  FieldMm at[kMax];
+  int n = 0;
+};
+
 // Blobs of one frame, strongest first. Capacity is reserved once per camera.
 struct BlobList {
   double plane_height = 150;  // mm, the plane the grid lies on

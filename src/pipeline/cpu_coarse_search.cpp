@@ -90,7 +90,8 @@ void CpuPipeline::Impl::makeCoarse(const FieldModel& field, const ScoreWindows& 
   spec.energy_r = w.energy_window;
   const size_t room = static_cast<size_t>(std::max(0, opt.max_blobs) + weakCapacity()) + kMaxStreakCandidates;
   regions.reserve(room);
-  coarse_reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs) + kMaxStreakCandidates);
+  coarse_reach.configure(grid.width, grid.height, w.weak_reach,
+                         std::max(0, opt.max_blobs) + kMaxStreakCandidates + ExpectedPlaces::kMax);
   window_peaks.assign(pool.size(), std::vector<FinePeakFound>(room));
   window_counts.assign(pool.size(), 0);
   found_peaks.reserve(room * pool.size());
@@ -132,8 +133,8 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
     u = {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
     return u.x1 - u.x0 <= max_side && u.y1 - u.y0 <= max_side;
   };
-  auto addPeak = [&](const Blob& b) {
-    const GridPx g = grid.toGrid(b.position);
+  auto addPeak = [&](const FieldMm& at) {
+    const GridPx g = grid.toGrid(at);
     const int x = static_cast<int>(std::floor(g.x)), y = static_cast<int>(std::floor(g.y));
     const CellRect box{x - r, y - r, x + r + 2, y + r + 2};
     CellRect u;
@@ -147,13 +148,15 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
   // Weak peaks are scored only near the coarse pass's blobs (the full
   // pass: near its own blobs).
   coarse_reach.clear();
+  auto addReach = [&](const FieldMm& at) {
+    addPeak(at);
+    const GridPx g = grid.toGrid(at);
+    coarse_reach.keep(g.x, g.y);
+  };
   for (const Blob& b : out.blobs)
-    if (!b.streak) {
-      addPeak(b);
-      const GridPx g = grid.toGrid(b.position);
-      coarse_reach.keep(g.x, g.y);
-    }
-  for (const Blob& b : out.weak) addPeak(b);
+    if (!b.streak) addReach(b.position);
+  for (int k = 0; k < expected.n; ++k) addReach(expected.at[k]);
+  for (const Blob& b : out.weak) addPeak(b.position);
   // Regions that grew into each other since: merged where they fit.
   for (size_t i = 0; i < regions.size(); ++i)
     for (size_t j = i + 1; j < regions.size();) {
@@ -189,6 +192,10 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
   // object, weak peaks only within reach of a blob.
   spacing.clear();
   reach.clear();
+  for (int k = 0; k < expected.n; ++k) {
+    const GridPx g = grid.toGrid(expected.at[k]);
+    reach.keep(g.x, g.y);
+  }
   // The coarse pass's fast-ball candidates, kept for after the blobs.
   streak_centers.clear();
   for (const Blob& b : out.blobs)

@@ -110,8 +110,8 @@ CpuPipeline::Impl::Impl(const CameraModel& cam, const FieldModel& field, const P
   merged.reserve(static_cast<size_t>(capacity) * parts);
   spacing.configure(grid.width, grid.height, kMinBlobDistanceMm / grid.scale,
                     std::max(0, opt.max_blobs) + weakCapacity());
-  reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs));
-  near.reserve(std::max(0, opt.max_blobs));
+  reach.configure(grid.width, grid.height, w.weak_reach, std::max(0, opt.max_blobs) + ExpectedPlaces::kMax);
+  near.reserve(std::max(0, opt.max_blobs) + ExpectedPlaces::kMax);
   spans.assign(parts, {});
   for (auto& v : spans) v.reserve(256);
   if (banded) {
@@ -419,11 +419,15 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
 
   // Weak peaks only around the blobs (hysteresis): where a side blob of a
   // robot whose center blob was found may lie.
-  if (weakCapacity() > 0 && !out.blobs.empty()) {
+  if (weakCapacity() > 0 && (!out.blobs.empty() || expected.n > 0)) {
     const float low = std::min(threshold, static_cast<float>(opt.weak_threshold));
     near.clear();
     reach.clear();
     for (const Blob& b : out.blobs) near.push_back(b.grid), reach.keep(b.grid.x, b.grid.y);
+    for (int k = 0; k < expected.n; ++k) {
+      const GridPx g = grid.toGrid(expected.at[k]);
+      near.push_back(g), reach.keep(g.x, g.y);
+    }
     std::sort(near.begin(), near.end(), [](const GridPx& a, const GridPx& b) { return a.y < b.y; });
     // Few blobs: on this thread, as their discs are a small part of the
     // grid (less work than waking the pool again); many (noisy carpet):
@@ -563,6 +567,10 @@ CpuPipeline::CpuPipeline(CpuPipeline&&) noexcept = default;
 CpuPipeline& CpuPipeline::operator=(CpuPipeline&&) noexcept = default;
 
 bool CpuPipeline::process(const cv::Mat& raw, BlobList& out) { return impl_->process(raw, out); }
+void CpuPipeline::expect(const ExpectedPlaces& places) {
+  impl_->expected = places;
+  if (impl_->coarse) impl_->coarse->expected = places;
+}
 const std::string& CpuPipeline::lastError() const { return impl_->error; }
 const std::string& CpuPipeline::samplingNote() const { return impl_->sampling_note; }
 const float* CpuPipeline::scoreData() const { return impl_->score.data(); }

@@ -45,6 +45,8 @@ class CpuPipeline {
   // CV_8UC3 BGR (always accepted). Returns false, leaves `out` empty and sets
   // lastError() on a frame of the wrong size or type.
   bool process(const cv::Mat& raw, BlobList& out);
+  // Places where weak peaks also count from the next frame on (blob.h).
+  void expect(const ExpectedPlaces& places);
   const std::string& lastError() const;
 
   const RectifiedGrid& grid() const;

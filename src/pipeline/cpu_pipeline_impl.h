@@ -89,6 +89,7 @@ struct CpuPipeline::Impl {
   // the same blobs indexed by place.
   std::vector<GridPx> near;
   BlobSpacing reach;
+  ExpectedPlaces expected;  // weak peaks count near these too (blob.h)
   std::vector<std::vector<std::pair<int, int>>> spans;  // scratch of findPeaksNear, per part
   // Peaks found inside the banded pass (band_peaks.h), one list set per band;
   // the weak peaks around the blobs taken from them, and their ratios.

@@ -88,7 +88,7 @@ OpenClPipeline::OpenClPipeline(const CameraModel& camera, const FieldModel& fiel
   const auto& ec = engine_->config();
   spacing_.configure(ec.grid_width, ec.grid_height, kMinBlobDistanceMm / grid_.scale,
                      std::max(0, ec.max_blobs) + std::max(0, ec.max_weak_blobs));
-  reach_.configure(ec.grid_width, ec.grid_height, w.weak_reach, std::max(0, ec.max_blobs));
+  reach_.configure(ec.grid_width, ec.grid_height, w.weak_reach, std::max(0, ec.max_blobs) + ExpectedPlaces::kMax);
 }
 
 OpenClPipeline::~OpenClPipeline() = default;
@@ -152,6 +152,10 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   // reach of a blob count, up to max_weak_blobs.
   spacing_.clear();
   reach_.clear();
+  for (int k = 0; k < expected_.n; ++k) {
+    const GridPx g = grid_.toGrid(expected_.at[k]);
+    reach_.keep(g.x, g.y);
+  }
   color_gate_.measureNeutral(raw, opt_.bayer);
   color_gate_.beginPeaks();
   for (const auto& p : engine_->peaks()) {

@@ -26,6 +26,7 @@ class OpenClPipeline final : public PixelPipeline {
   ~OpenClPipeline() override;
 
   bool process(const cv::Mat& raw, BlobList& out) override;
+  void expect(const ExpectedPlaces& places) override { expected_ = places; }
   const std::string& lastError() const override { return error_; }
   const RectifiedGrid& grid() const override { return grid_; }
   const StageTimes& times() const override { return times_; }
@@ -44,6 +45,7 @@ class OpenClPipeline final : public PixelPipeline {
  private:
   CameraModel camera_;
   PipelineOptions opt_;
+  ExpectedPlaces expected_;  // weak peaks count near these too (blob.h)
   RectifiedGrid grid_;
   StreakWindows streak_;  // the fast-ball pass's footprint on this grid
   MarkingMask streak_markings_;  // grid cells on a field line (streak_markings.h)
