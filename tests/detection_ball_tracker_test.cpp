@@ -123,5 +123,22 @@ TEST(BallTracker, OnlyAFastBallIsExpectedAndOnItsCourse) {
   EXPECT_EQ(tracker.expectedFastBalls(3 * kDt, at, 0), 0);  // no room
 }
 
+// A candidate only its course vouches for is kept, but neither moves its
+// track (which goes on from its last blob) nor starts one.
+TEST(BallTracker, ACourseOnlyCandidateNeitherMovesNorStartsATrack) {
+  BallTracker tracker(options());
+  frame(tracker, 0, {ball(0, 0)});
+  frame(tracker, kDt, {ball(100, 0)});
+  BallCandidate weak = ball(230, 10), elsewhere = ball(-2000, 500);
+  weak.course_only = elsewhere.course_only = true;
+  const auto kept = frame(tracker, 2 * kDt, {weak, elsewhere});
+  EXPECT_EQ(kept.size(), 2u);
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_EQ(tracker.tracks()[0].pos[1].x, 100);
+  frame(tracker, 3 * kDt, {ball(300, 0)});  // straight on from the last blob
+  EXPECT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_EQ(tracker.tracks()[0].pos[1].x, 300);
+}
+
 }  // namespace
 }  // namespace dv

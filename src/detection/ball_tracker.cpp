@@ -62,6 +62,14 @@ void BallTracker::predict(double t, const FieldMm* robots, int n) {
   }
 }
 
+void BallTracker::onCourse(const BallTrack& bt, FieldMm from, FieldMm p, double& along, double& across) const {
+  const double dx = bt.pos[1].x - bt.pos[0].x, dy = bt.pos[1].y - bt.pos[0].y;
+  const double step = std::hypot(dx, dy);
+  const double ex = p.x - from.x, ey = p.y - from.y;
+  along = step > 0 ? (ex * dx + ey * dy) / step : 0;
+  across = step > 0 ? std::abs(ex * dy - ey * dx) / step : std::hypot(ex, ey);
+}
+
 bool BallTracker::isFast(const BallTrack& bt) const {
   return bt.history >= 2 && bt.t[1] > bt.t[0] &&
          dist(bt.pos[1], bt.pos[0]) > opt_.max_robot_speed * (bt.t[1] - bt.t[0]);
@@ -97,12 +105,11 @@ bool BallTracker::isEcho(const BallCandidate& c, double t) const {
     // strength) or a streak holds it (a streak's rank is a shape measure
     // that says nothing against a round blob's).
     if (!(c.rank < bt.rank || bt.streak || bt.hits >= kEstablishedHits)) continue;
-    const double dx = bt.pos[1].x - bt.pos[0].x, dy = bt.pos[1].y - bt.pos[0].y;
-    const double step = std::hypot(dx, dy);
+    const double step = dist(bt.pos[1], bt.pos[0]);
     if (step <= 0) continue;
     const double reach = step / (bt.t[1] - bt.t[0]) * kEchoTime;
-    const double ex = c.pos.x - bt.pos[1].x, ey = c.pos.y - bt.pos[1].y;
-    const double along = (ex * dx + ey * dy) / step, across = std::abs(ex * dy - ey * dx) / step;
+    double along = 0, across = 0;
+    onCourse(bt, bt.pos[1], c.pos, along, across);
     if (std::abs(along) <= reach && across <= 2 * opt_.ball_radius) return true;
   }
   return false;
@@ -131,7 +138,7 @@ void BallTracker::update(double t, std::vector<BallCandidate>& cands) {
   const auto onCourseStreak = [](const BallCandidate& c) { return c.track >= 0 && !c.kicked && c.streak; };
   for (const bool first : {true, false}) {
     for (auto& c : cands) {
-      if (onCourseStreak(c) != first) continue;
+      if (onCourseStreak(c) != first || c.course_only) continue;
       if (c.track < 0 || tracks_[c.track].confirmed) {
         c.track = -1;
         continue;
@@ -160,7 +167,7 @@ void BallTracker::update(double t, std::vector<BallCandidate>& cands) {
                                [&](const BallTrack& bt) { return !bt.confirmed && t - bt.t[1] > kMaxGap; }),
                 tracks_.end());
   for (const auto& c : cands) {
-    if (c.track >= 0 || tracks_.size() >= kMaxTracks) continue;
+    if (c.track >= 0 || c.course_only || tracks_.size() >= kMaxTracks) continue;
     BallTrack bt;
     bt.pos[1] = c.pos;
     bt.t[1] = t;

@@ -35,6 +35,9 @@ struct BallCandidate {
   int track = -1;
   bool kicked = false;  // continues its track only as kicked (outside its course's gate)
   bool stale = false;  // where a kicked ball lay (BallTracker::update)
+  // Only its track's course vouches for it (a weak peak): it is reported,
+  // but neither moves nor starts a track, which goes on from its last blob.
+  bool course_only = false;
 };
 
 struct BallTrackerOptions {
@@ -67,7 +70,7 @@ class BallTracker {
   // Commits frame t's balls (`cands`, in the order they were chosen; each
   // matched): a round blob where a kicked ball lay is dropped as its stale
   // picture, streaks on their tracks' courses continue them first, then
-  // the others in order, one per track; echoes of a ball tracked in this
+  // the others in order, one per track (none course_only); echoes of a ball tracked in this
   // frame are dropped; tracks unconfirmed for 0.1 s end, and the balls
   // that continued none start new ones.
   void update(double t, std::vector<BallCandidate>& cands);
@@ -75,6 +78,8 @@ class BallTracker {
   // Whether a track moves faster than any robot (opt max_robot_speed) over
   // its last two positions: nothing but a ball moves so.
   bool isFast(const BallTrack& bt) const;
+  // Where p lies from `from` along a track's last step and across it (mm).
+  void onCourse(const BallTrack& bt, FieldMm from, FieldMm p, double& along, double& across) const;
   // Where the fast tracks will be at `t_next`, straight on and mirrored at
   // the walls (as predict); up to `max` into `out`, their count returned.
   int expectedFastBalls(double t_next, FieldMm* out, int max) const;

@@ -224,12 +224,22 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // Weak peaks on a fast ball's course, kept by the pixel pipeline where
   // expectedBalls said: a compressed stream can wash a fast ball out to one
   // (H.264 at 3 Mbit/s under a cold cast: a gray smear in every other
-  // frame, scoring 0.06..0.24). Only the course vouches for such a peak:
-  // not carpet, where no blob continued the track.
-  auto trackTaken = [&](int track) {
+  // frame, scoring 0.06..0.24). Only an established course vouches for such
+  // a peak: not carpet, where no blob continued the track. Nor does the
+  // peak move the track (course_only): carpet texture near the prediction
+  // would bend it (H.265 at 3 Mbit/s: a peak 45 mm off turned the ball's
+  // track aside, and its ghost took another peak for a second ball).
+  // A ball keeps its line: such a peak lies on it, off it by no more than
+  // a ball's blurred picture (as an echo).
+  auto courseFree = [&](const BallCandidate& c) {
+    if (c.track < 0) return false;
+    const BallTrack& bt = ball_tracker.tracks()[c.track];
+    double along = 0, across = 0;
+    ball_tracker.onCourse(bt, bt.predicted, c.pos, along, across);
+    if (bt.hits < BallTracker::kEstablishedHits || across > 2 * opt.ball_radius) return false;
     for (const BallCandidate& o : ball_cands)
-      if (o.track == track && !o.kicked) return true;
-    return false;
+      if (o.track == c.track && !o.kicked) return false;
+    return true;
   };
   for (int i = n_strong; tracking && i < static_cast<int>(blobs.size()); ++i) {
     const FrameBlob& b = blobs[i];
@@ -239,8 +249,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.pos = b.at_ball;
     ballTemporal(c, tracking);
     const double course = courseConfidence(c);
-    if (course < opt.min_ball_confidence || trackTaken(c.track) || insideRobot(c.pos)) continue;
+    if (course < opt.min_ball_confidence || !courseFree(c) || insideRobot(c.pos)) continue;
     c.confidence = c.rank = course;
+    c.course_only = true;
     ball_cands.push_back(c);
   }
   // Balls cut by the image border, which make no blob (border_balls.h).
