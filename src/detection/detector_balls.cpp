@@ -241,7 +241,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (o.track == c.track && !o.kicked) return false;
     return true;
   };
-  for (int i = n_strong; tracking && i < static_cast<int>(blobs.size()); ++i) {
+  bool fast_course = false;
+  for (const BallTrack& bt : ball_tracker.tracks()) fast_course = fast_course || ball_tracker.isFast(bt);
+  for (int i = n_strong; tracking && fast_course && i < static_cast<int>(blobs.size()); ++i) {
     const FrameBlob& b = blobs[i];
     if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb)) continue;
     BallCandidate c;
