@@ -328,8 +328,10 @@ void Detector::Impl::expectedBalls(ExpectedPlaces& out) const {
   if (!opt.tracking || !have_frame || !(frame_interval > 0)) return;
   FieldMm at_ball[ExpectedPlaces::kMax];
   const int n = ball_tracker.expectedFastBalls(last_t + frame_interval, at_ball, ExpectedPlaces::kMax);
+  // Only where a ball can be (a prediction from two frames a moment apart
+  // may reach far beyond).
   for (int k = 0; k < n; ++k)
-    if (alongRay(at_ball[k], opt.ball_radius, plane_height, out.at[out.n])) ++out.n;
+    if (ball_area.contains(at_ball[k]) && alongRay(at_ball[k], opt.ball_radius, plane_height, out.at[out.n])) ++out.n;
 }
 
 void Detector::expectedBalls(ExpectedPlaces& out) const { impl_->expectedBalls(out); }
