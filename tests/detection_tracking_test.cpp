@@ -406,12 +406,13 @@ TEST(DetectionTracking, AFastBallsStreakInAnotherColorContinuesItsCourse) {
 // peak (kept by the pixel pipeline where expectedBalls says), or to a blob
 // of a color no class explains. On the fast track's course either
 // continues the track; the same peak off the course is no ball, nor one
-// beside the ball's line, and neither is the blob.
+// beside the ball's line, nor a carpet-colored one on it, and neither is
+// the blob.
 TEST(DetectionTracking, AWeakPeakOnAFastBallsCourseContinuesIt) {
   const FieldMm rest{-2250, 0};
   constexpr ColorRef kWashed{160, 140, 80};  // no class's, nor clearly the ball's hue
   kickedBall(
-      rest, 10, 500,
+      rest, 11, 500,
       [&](SceneBuilder& s, int f) {
         if (f == kKick + 3 || f == kKick + 4) {
           const FieldPoint at{s.balls.back().x, s.balls.back().y, 21.5};
@@ -430,9 +431,14 @@ TEST(DetectionTracking, AWeakPeakOnAFastBallsCourseContinuesIt) {
           s.list.blobs.pop_back();
           s.addBlob(at, kWashed, 0.15f, true);
         }
+        if (f == kKick + 7) {  // the ball unseen, a lit peak of the carpet where it would be
+          const FieldPoint at{s.balls.back().x, s.balls.back().y, 21.5};
+          s.list.blobs.pop_back();
+          s.addBlob(at, {56, 124, 64}, 0.15f, true);
+        }
       },
       [](const Detections& out, FieldMm ball, int f) {
-        if (f == kKick + 6) {
+        if (f >= kKick + 6) {
           EXPECT_TRUE(out.balls.empty()) << "frame " << f;
           return;
         }
