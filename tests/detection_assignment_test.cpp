@@ -200,6 +200,44 @@ TEST(DetectionBalls, AnOverExposedBlobIsJudgedByItsRimWhereItStandsAlone) {
   }
 }
 
+// A blob of a color no class explains, in a hue not clearly the ball's: a
+// kicked ball that a cold cast and H.264 washed out to a pale yellow-gray.
+// Alone on the carpet it is the ball. Beside a pattern's dot, on a robot's
+// dark top (a lost robot's washed-out center) or on a marking (a thin
+// line's false colors) it is none, nor without the frame around it.
+TEST(DetectionBalls, AWashedOutBlobAloneOnTheCarpetIsTheBall) {
+  const CameraModel cam(test::topDownCamera());
+  constexpr ColorRef kWashed{160, 140, 80};
+  enum Case { kAlone, kDot, kTop, kMarking };
+  for (int k = kAlone; k <= kMarking; ++k) {
+    SCOPED_TRACE(k);
+    const FieldMm ball = k == kMarking ? FieldMm{3500, 500} : FieldMm{3000, 1000};  // the defense area's line
+    SceneBuilder s(cam, 31, {{1, 1, 1}, 1, 1, 0});
+    for (auto r : s.randomRobots(3, 3, kX0, 2000, kY0, kY1)) s.addRobot(r);
+    s.addBlob({ball.x, ball.y, 21.5}, kWashed, 0.8f);
+    if (k == kDot) s.addBlob({ball.x + 60, ball.y, 140}, SceneBuilder::kGreen, 0.9f);
+    cv::Mat image(static_cast<int>(cam.calibration().image_height), static_cast<int>(cam.calibration().image_width),
+                  CV_8UC3, cv::Scalar(50, 110, 40));
+    const auto px = cam.fieldToImage({ball.x, ball.y, 21.5});
+    ASSERT_TRUE(px);
+    const cv::Point c(static_cast<int>(std::lround(px->u)), static_cast<int>(std::lround(px->v)));
+    if (k == kTop) cv::circle(image, c, 14, cv::Scalar(20, 20, 20), cv::FILLED);  // 85 mm
+    cv::circle(image, c, 4, cv::Scalar(kWashed.b, kWashed.g, kWashed.r), cv::FILLED);
+    Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+    Detections out;
+    det.process(s.list, 0, out, FrameView{&image, BayerPattern::None});
+    if (k == kAlone) {
+      ASSERT_EQ(out.balls.size(), 1u);
+      EXPECT_NEAR(out.balls[0].position.x, ball.x, 10);
+      EXPECT_NEAR(out.balls[0].position.y, ball.y, 10);
+    } else {
+      EXPECT_TRUE(out.balls.empty());
+    }
+    det.process(s.list, 1, out);
+    EXPECT_TRUE(out.balls.empty()) << "without the frame";
+  }
+}
+
 TEST(DetectionBalls, LineCrossingsAndCarpetAreNoBalls) {
   const CameraModel cam(test::topDownCamera());
   for (const auto& look : {test::lookNormal(), test::lookBlueWhiteBalance(), test::lookDark()}) {

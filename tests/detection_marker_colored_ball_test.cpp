@@ -46,7 +46,8 @@ TEST(MarkerColoredBall, AYellowDiscAloneOnTheCarpetStandsOnCarpet) {
   cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kYellowDot), cv::FILLED, cv::LINE_AA);
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
-  EXPECT_EQ(carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+  const FrameColors colors = paintedColors();
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
 }
 
 TEST(MarkerColoredBall, ACenterDotOnARobotsTopStandsOnNoCarpet) {
@@ -56,7 +57,22 @@ TEST(MarkerColoredBall, ACenterDotOnARobotsTopStandsOnNoCarpet) {
   cv::circle(image, {100, 100}, static_cast<int>(25 / kBallRadiusMm * kRadiusPx), bgr(kYellowDot), cv::FILLED);
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
-  EXPECT_EQ(carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+  const FrameColors colors = paintedColors();
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+  // Without the frame's classes only the top's darkness tells it.
+  EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+}
+
+TEST(MarkerColoredBall, WithoutClassesACarpetOfAnyColorStandsAroundTheBall) {
+  // Carpet the frame's classes would call yellow (a cold cast's pale yellow
+  // centers lie near it): by color no carpet, by darkness no robot top.
+  cv::Mat image(200, 200, CV_8UC3, bgr(kYellowDot) * 0.6);
+  cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kOrangeBall), cv::FILLED, cv::LINE_AA);
+  const FrameView frame{&image, BayerPattern::None};
+  const float brightness = kOrangeBall[0] + kOrangeBall[1] + kOrangeBall[2];
+  const FrameColors colors = paintedColors();
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+  EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
 }
 
 TEST(MarkerColoredBall, ALineBesideTheBallLeavesMostOfItsRingOnCarpet) {
@@ -65,7 +81,8 @@ TEST(MarkerColoredBall, ALineBesideTheBallLeavesMostOfItsRingOnCarpet) {
   cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kYellowDot), cv::FILLED, cv::LINE_AA);
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
-  const double share = carpetAroundBall(frame, paintedColors(), kCenter, kRadiusPx, kBallRadiusMm, brightness);
+  const FrameColors colors = paintedColors();
+  const double share = carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness);
   EXPECT_GT(share, 0.5);
   EXPECT_LT(share, 1.0);
 }

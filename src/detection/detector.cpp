@@ -110,6 +110,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   }
   raw_positions.clear();
   for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
+  for (const Blob& b : list.weak) raw_positions.push_back(b.position);
   prepare(list);
   ColorVec class_colors[kNumClasses];
   for (int k = 0; k < kNumClasses; ++k) class_colors[k] = classes[k].color;

@@ -102,6 +102,21 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
     return false;
   };
+  // The hue rule's cause, a thin line's demosaiced edge, lies on a marking,
+  // and a robot's washed-out center dot has its side dots and its dark top
+  // around it. A blob of a color no class explains with neither is a ball
+  // whatever its hue: under a cold cast (0.72, 1, 1.62) at saturation 0.55
+  // in H.264 at 5 Mbit/s the kicked ball came out pale yellow-gray, (83,
+  // 87, 64) by the carpet's (44, 76, 58), in ten of the first twelve
+  // frames. The ring is judged by darkness alone: there the carpet lay
+  // nearer to the pale yellow centers than to the field class.
+  auto aloneOnTheCarpet = [&](int i) {
+    ImagePx px;
+    double r;
+    return !onMarking(blobs[i].at_ball) && !dotsAround(i) && ballInImage(i, px, r) &&
+           carpetAroundBall(frame_view, nullptr, px, r, opt.ball_radius, blobs[i].brightness()) >=
+               kMinCarpetAroundBall;
+  };
   // A blob nearest to a marker's class may be a ball in that marker's
   // color (a ball clipped in a sun patch): addMarkerColoredBalls judges it.
   auto keepIfMarkerColored = [&](int i, int nearest) {
@@ -175,7 +190,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     bool streak = b.streak;
     double color_conf_used = color_conf;
     if (unexpected && !b.streak) {
-      if (!judge.hueClearlyBetweenPinkAndYellow(seen)) {
+      if (!judge.hueClearlyBetweenPinkAndYellow(seen) && !aloneOnTheCarpet(i)) {
         // In a marker's hue it may be a ball in that marker's color, as one
         // nearer to that class: a ball in a sun patch under tungsten, its red
         // clipped, reads as the yellow centers do.
@@ -225,29 +240,47 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // expectedBalls said: a compressed stream can wash a fast ball out to one
   // (H.264 at 3 Mbit/s under a cold cast: a gray smear in every other
   // frame, scoring 0.06..0.24). Only an established course vouches for such
-  // a peak, where no blob continued the track, and only in a color a ball's
-  // streak can take (the carpet's texture peaks there do not: at 2448 x
-  // 2048 one 118 mm behind the ball, on its line, was taken). Nor does the
-  // peak move the track (course_only): carpet texture near the prediction
-  // would bend it (H.265 at 3 Mbit/s: a peak 45 mm off turned the ball's
-  // track aside, and its ghost took another peak for a second ball).
-  // A ball keeps its line: such a peak lies on it, off it by no more than
-  // a ball's blurred picture (as an echo).
+  // a peak, where no blob continued the track, and, as for a blob on the
+  // course, only where the carpet does not explain its color (the smears
+  // read (73, 93, 74) by the carpet's (42, 90, 74): no streak's color, the
+  // ball's chroma gone). Nor does the peak move the track (course_only):
+  // carpet texture near the prediction would bend it (H.265 at 3 Mbit/s: a
+  // peak 45 mm off turned the ball's track aside, and its ghost took
+  // another peak for a second ball). A ball keeps its line: such a peak
+  // lies on it, off it by no more than a ball's blurred picture (as an
+  // echo), and not behind the prediction by more than half a frame's
+  // travel: there it is nearer to where the ball was a frame before, the
+  // stream's stale copy of it (at 2448 x 2048, H.264 at 3 Mbit/s, one 118
+  // mm behind, four frames into a coast).
   auto courseFree = [&](const BallCandidate& c) {
     if (c.track < 0) return false;
     const BallTrack& bt = ball_tracker.tracks()[c.track];
     double along = 0, across = 0;
     ball_tracker.onCourse(bt, bt.predicted, c.pos, along, across);
-    if (bt.hits < BallTracker::kEstablishedHits || across > 2 * opt.ball_radius) return false;
+    const double step = bt.t[1] > bt.t[0] ? dist(bt.pos[1], bt.pos[0]) / (bt.t[1] - bt.t[0]) * frame_interval : 0;
+    if (bt.hits < BallTracker::kEstablishedHits || across > 2 * opt.ball_radius || along < -0.5 * step) return false;
     for (const BallCandidate& o : ball_cands)
       if (o.track == c.track && !o.kicked) return false;
     return true;
+  };
+  // Where the frame shows it, a peak whose color differs from what lies
+  // around it by no more than a color's noise (kMinClassRadius) is the
+  // carpet's texture, whatever the classes say: in that stream the field
+  // class never left its reference, 43 from the carpet's color. (There the
+  // smears the course took differed from their ring by 15..51, the texture
+  // peaks 65..118 mm from the ball by 2..13.)
+  auto likeWhatLiesAround = [&](int i) {
+    ImagePx px;
+    double r;
+    ColorVec around;
+    return ballInImage(i, px, r) && colorAroundBall(frame_view, px, r, opt.ball_radius, around) &&
+           ClippedColor(blobs[i].rgb).distance(around) <= kMinClassRadius;
   };
   bool fast_course = false;
   for (const BallTrack& bt : ball_tracker.tracks()) fast_course = fast_course || ball_tracker.isFast(bt);
   for (int i = n_strong; tracking && fast_course && i < static_cast<int>(blobs.size()); ++i) {
     const FrameBlob& b = blobs[i];
-    if (!b.valid || b.robot >= 0 || judge.confidence(ClippedColor(b.rgb), true) <= 0) continue;
+    if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb) || likeWhatLiesAround(i)) continue;
     BallCandidate c;
     c.blob = i;
     c.pos = b.at_ball;
@@ -401,7 +434,7 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
                              ? b.has_unclipped && (test.isBall(b.unclipped_rgb) || test.isRim(b.unclipped_rgb))
                              : test.isBall(b.rgb);
     if (!colored || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
-    const double carpet = carpetAroundBall(frame_view, ball_colors, px, r, opt.ball_radius, b.brightness());
+    const double carpet = carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;
     c.blob = m.blob;

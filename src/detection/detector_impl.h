@@ -258,7 +258,7 @@ struct Detector::Impl {
   // This frame's colors for the ball's color judge (ball_color.h).
   FrameColors ball_colors;
 
-  std::vector<FieldMm> raw_positions;
+  std::vector<FieldMm> raw_positions;  // per blobs[] entry, on the rectification plane
   double plane_height = 150;
 
   // Balls cut by the image border (border_balls.h), found in the frame;

@@ -36,26 +36,57 @@ bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
   return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
-double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
-                        double ball_radius_mm, float brightness) {
+namespace {
+// The ring's samples that lie in the image, into rgb (kRingSamples x 3);
+// their count.
+int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float* rgb) {
   if (!frame.image || frame.image->empty()) return 0;
   const double w = frame.image->cols, h = frame.image->rows, r = kRingMm / ball_radius_mm * radius_px;
-  int carpet = 0;
+  int n = 0;
   for (int i = 0; i < kRingSamples; ++i) {
     const double a = 2 * kPi * i / kRingSamples;
     const double u = center.u + r * std::cos(a), v = center.v + r * std::sin(a);
     if (u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
-    float rgb[3];
-    frameRgbAt(frame, u, v, rgb);
+    frameRgbAt(frame, u, v, rgb + 3 * n++);
+  }
+  return n;
+}
+}  // namespace
+
+double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
+                        double ball_radius_mm, float brightness) {
+  float ring[3 * kRingSamples];
+  const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
+  int carpet = 0;
+  for (int i = 0; i < n; ++i) {
+    const float* rgb = ring + 3 * i;
     if (rgb[0] + rgb[1] + rgb[2] < kTopBrightness * brightness) continue;
+    if (!colors) {
+      ++carpet;
+      continue;
+    }
     const ClippedColor seen(rgb);
     int nearest = kField;
     for (int k = 0; k < kNumClasses; ++k)
-      if (k != kGreen && colors.seen[k] && seen.distance(colors.color[k]) < seen.distance(colors.color[nearest]))
+      if (k != kGreen && colors->seen[k] && seen.distance(colors->color[k]) < seen.distance(colors->color[nearest]))
         nearest = k;
     carpet += nearest == kField;
   }
   return static_cast<double>(carpet) / kRingSamples;
+}
+
+bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& color) {
+  float ring[3 * kRingSamples];
+  const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
+  if (2 * n < kRingSamples) return false;
+  float v[kRingSamples], median[3];
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < n; ++i) v[i] = ring[3 * i + k];
+    std::nth_element(v, v + n / 2, v + n);
+    median[k] = v[n / 2];
+  }
+  color = colorFeature(median[0], median[1], median[2]);
+  return true;
 }
 
 }  // namespace dv

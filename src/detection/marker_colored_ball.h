@@ -47,8 +47,17 @@ class MarkerColoredBallTest final : public BallColorTest {
 // count as no carpet.
 // A ball judged by where it lies stands mostly on the carpet: at least half
 // of that ring (a ball beside a robot still shows half of it).
+// colors null: any color counts, only a robot's top does not (where the
+// frame's classes cannot tell the carpet: under a cold cast in H.264 the
+// carpet beside a washed-out ball lay nearer to the pale yellow centers
+// than to the field class).
 inline constexpr double kMinCarpetAroundBall = 0.5;
-double carpetAroundBall(const FrameView& frame, const FrameColors& colors, ImagePx center, double radius_px,
+double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness);
+// What lies around a ball on the same ring: the chromaticity of its
+// per-channel median. Around a ball alone that is the carpet (a fast
+// ball's streak covers less than half the ring). False where less than
+// half the ring lies in the image.
+bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& color);
 
 }  // namespace dv
