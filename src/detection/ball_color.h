@@ -71,9 +71,10 @@ class BallColorJudge final : public BallColorTest {
   // than the hue a color's noise spans at its distance from the white. A
   // blob's mean color must, to be a ball of a shade of its own: a pale
   // yellow (a thin line's demosaiced edge under tungsten, (204, 204, 110))
-  // is no more than a paler yellow. Single samples on a ball's rim are
-  // judged without it: mixed with the carpet, their hue passes yellow's on
-  // the way to green.
+  // is no more than a paler yellow (the detector still takes such a blob
+  // where it stands alone on the carpet, off the markings). Single samples
+  // on a ball's rim are judged without it: mixed with the carpet, their hue
+  // passes yellow's on the way to green.
   bool hueClearlyBetweenPinkAndYellow(const ClippedColor& seen) const;
 
  private:

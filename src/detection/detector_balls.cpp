@@ -280,13 +280,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   for (const BallTrack& bt : ball_tracker.tracks()) fast_course = fast_course || ball_tracker.isFast(bt);
   for (int i = n_strong; tracking && fast_course && i < static_cast<int>(blobs.size()); ++i) {
     const FrameBlob& b = blobs[i];
-    if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb) || likeWhatLiesAround(i)) continue;
+    if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb)) continue;
     BallCandidate c;
     c.blob = i;
     c.pos = b.at_ball;
     ballTemporal(c, tracking);
     const double course = courseConfidence(c);
-    if (course < opt.min_ball_confidence || !courseFree(c) || insideRobot(c.pos)) continue;
+    if (course < opt.min_ball_confidence || !courseFree(c) || insideRobot(c.pos) || likeWhatLiesAround(i)) continue;
     c.confidence = c.rank = course;
     c.course_only = true;
     ball_cands.push_back(c);
