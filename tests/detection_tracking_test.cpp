@@ -497,6 +497,46 @@ TEST(DetectionTracking, AWeakPeakInTheColorAroundItIsNoBall) {
   }
 }
 
+// A kicked ball washed out so far that every frame's streak lies nearer
+// to the pink dots than to orange (tungsten, saturation 0.4, gamma 0.6 in
+// H.264): from the third streak on a straight course faster than any
+// robot it is the ball (fast_streaks.h). The same streaks at a robot's
+// pace are none.
+TEST(DetectionTracking, WashedStreaksOnAFastStraightCourseAreTheBall) {
+  constexpr ColorRef kPinkish{235, 120, 170};
+  const FieldMm rest{2000, 200};
+  kickedBall(
+      rest, kKick + 5, 900,
+      [&](SceneBuilder& s, int f) {
+        if (f < kKick) return;
+        const FieldPoint at{s.balls.back().x, s.balls.back().y, 21.5};
+        s.list.blobs.pop_back();
+        s.addBlob(at, kPinkish, 0.6f);
+        s.list.blobs.back().streak = true;
+      },
+      [&](const Detections& out, FieldMm ball, int f) {
+        if (f < kKick) return;
+        if (f < kKick + 2) {
+          EXPECT_TRUE(out.balls.empty()) << "frame " << f;
+          return;
+        }
+        ASSERT_EQ(out.balls.size(), 1u) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.x, ball.x, 5) << "frame " << f;
+        EXPECT_NEAR(out.balls[0].position.y, ball.y, 5) << "frame " << f;
+      });
+  const CameraModel cam(test::topDownCamera());
+  Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
+  Detections out;
+  for (int f = 0; f < 6; ++f) {
+    SceneBuilder s(cam, 950 + f);
+    s.addRobot({Team::Yellow, 1, {3000, 1000}, 0});
+    s.addBlob({1000 - 3500 * f * kDt, -500, 21.5}, kPinkish, 0.6f);
+    s.list.blobs.back().streak = true;
+    det.process(s.list, f * kDt, out);
+    EXPECT_TRUE(out.balls.empty()) << "at a robot's pace, frame " << f;
+  }
+}
+
 // The detector tells the pixel pipeline where a fast ball will be next,
 // on the blobs' plane (where its ray meets it), and nothing for a slow one.
 TEST(DetectionTracking, TheNextPlaceOfAFastBallIsExpectedOnTheBlobsPlane) {

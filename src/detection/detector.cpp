@@ -26,6 +26,7 @@ void Detector::Impl::setOptions(const DetectorOptions& o) {
   opt = o;
   tracker.setOptions(RobotTrackerOptions::from(o));
   ball_tracker.setOptions({field.withBoundary(), o.ball_radius, o.max_ball_speed, o.max_robot_speed});
+  fast_streaks.setLimits(o.max_robot_speed, o.max_ball_speed, o.ball_radius);
   ref_height = 0.5 * (opt.robot_height_yellow + opt.robot_height_blue);
   search.setOptions(o, ref_height, ball_area);
   const ColorRef* refs[kNumClasses] = {&opt.ref_yellow, &opt.ref_blue,   &opt.ref_green,
@@ -41,6 +42,7 @@ void Detector::Impl::reset() {
   color_map.reset();
   tracker.clear();
   ball_tracker.clear();
+  fast_streaks.clear();
   have_frame = false;
 }
 
@@ -97,6 +99,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   if (new_scene) {
     tracker.clear();
     ball_tracker.clear();
+    fast_streaks.clear();
   }
   plane_height = list.plane_height;
   health = {};

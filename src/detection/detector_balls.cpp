@@ -47,6 +47,7 @@ double Detector::Impl::courseConfidence(const BallCandidate& c) const {
 
 void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_cands.clear();
+  if (tracking) fast_streaks.begin(t);
   // Strength reference: the median score of this frame's robot blobs.
   score_buf.clear();
   for (const auto& r : robots)
@@ -175,6 +176,17 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
         ++field_n;
       } else if (!b.streak && !insideRobot(p)) {
         keepIfMarkerColored(i, nearest_neg);
+      }
+      // A blob no color rule takes: its motion may still tell it
+      // (fast_streaks.h).
+      if (tracking && !judge.isCarpet(seen.rgb()) && !insideRobot(p) && !onMarking(p) && !onGoalWall(p)) {
+        fast_streaks.add(p);
+        const double chain = fast_streaks.confidence(p);
+        if (chain >= opt.min_ball_confidence) {
+          c.streak = b.streak;
+          c.confidence = c.rank = chain;
+          ball_cands.push_back(c);
+        }
       }
       continue;
     }

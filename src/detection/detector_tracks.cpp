@@ -14,6 +14,7 @@ void Detector::Impl::track(double t) {
   } hooks(*this);
   if (tracker.update(t, robots, hooks)) {
     ball_tracker.clear();
+    fast_streaks.clear();
     new_scene = true;
   }
 }
