@@ -19,11 +19,11 @@
 #include "core/error.h"
 #include "detection/ball_color.h"
 #include "detection/ball_tracker.h"
-#include "detection/fast_streaks.h"
 #include "detection/blob_index.h"
 #include "detection/border_balls.h"
 #include "detection/clipped_color.h"
 #include "detection/color_classes.h"
+#include "detection/fast_streaks.h"
 #include "detection/frame_blob.h"
 #include "detection/hypothesis_search.h"
 #include "detection/pattern_fit.h"
@@ -72,7 +72,7 @@ struct Detector::Impl {
   std::vector<Hypothesis> robots;  // accepted
   RobotTracker tracker;
   BallTracker ball_tracker;
-  FastStreaks fast_streaks;  // streaks no color rule took, of the last frames
+  FastStreaks fast_streaks;  // blobs no color rule took, of the last frames
   std::vector<FieldMm> robot_positions;  // of the accepted robots, for the ball tracker
   std::vector<BallCandidate> ball_cands;
   std::vector<ColorVec> samples;

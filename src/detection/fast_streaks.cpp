@@ -38,7 +38,7 @@ double FastStreaks::confidence(FieldMm p) const {
     for (int i = 0; i < a.n; ++i) {
       const double step = distance(p, a.at[i]);
       if (step <= max_robot_speed_ * dt || step > max_ball_speed_ * dt) continue;
-      if (ka > 0 && slowNear(ka - 1, a.at[i], a.t)) continue;
+      if (slowNear(ka - 1, a.at[i], a.t)) continue;
       for (int kb = ka - 1; kb >= 0; --kb) {
         const Frame& b = frames_[kb];
         const double dt0 = a.t - b.t;

@@ -39,10 +39,10 @@ class FastStreaks {
   // (mm/s, setLimits) and that put p's place within two ball radii of it
   // (a ball keeps its line, off it by no more than its blurred picture),
   // 1 - (p's distance from that place) / (its step from the later blob of
-  // the pair). 0 where a blob of the frame before lies
-  // within a robot's reach of p: a slow thing's (the dots of a robot not
-  // found show no ball's color frame after frame); nor may a pair's later
-  // blob have such a one.
+  // the pair). 0 where a blob of the frame before lies within a robot's
+  // reach of p: a slow thing's (the dots of a robot not found show no
+  // ball's color frame after frame); nor may a pair's later blob have such
+  // a one.
   double confidence(FieldMm p) const;
 
  private:
@@ -53,8 +53,9 @@ class FastStreaks {
   };
   // Whether frame k holds a blob within a robot's reach of p, at time t.
   bool slowNear(int k, FieldMm p, double t) const;
-  std::array<Frame, kFramesBefore + 1> frames_;                                 // [kFramesBefore] the current frame
-  double max_robot_speed_ = 4000, max_ball_speed_ = 6500, ball_radius_ = 21.5;  // mm/s, mm/s, mm
+  std::array<Frame, kFramesBefore + 1> frames_;  // the last is the current frame
+  double max_robot_speed_ = 4000, max_ball_speed_ = 6500;  // mm/s
+  double ball_radius_ = 21.5;                              // mm
 };
 
 }  // namespace dv
