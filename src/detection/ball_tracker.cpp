@@ -70,10 +70,11 @@ void BallTracker::onCourse(const BallTrack& bt, FieldMm from, FieldMm p, double&
   across = step > 0 ? std::abs(ex * dy - ey * dx) / step : std::hypot(ex, ey);
 }
 
-bool BallTracker::isFast(const BallTrack& bt) const {
-  return bt.history >= 2 && bt.t[1] > bt.t[0] &&
-         dist(bt.pos[1], bt.pos[0]) > opt_.max_robot_speed * (bt.t[1] - bt.t[0]);
+double BallTracker::speed(const BallTrack& bt) {
+  return bt.history >= 2 && bt.t[1] > bt.t[0] ? dist(bt.pos[1], bt.pos[0]) / (bt.t[1] - bt.t[0]) : 0;
 }
+
+bool BallTracker::isFast(const BallTrack& bt) const { return speed(bt) > opt_.max_robot_speed; }
 
 int BallTracker::expectedFastBalls(double t_next, FieldMm* out, int max) const {
   int n = 0;
@@ -99,15 +100,14 @@ void BallTracker::match(BallCandidate& c) const {
 
 bool BallTracker::isEcho(const BallCandidate& c, double t) const {
   for (const BallTrack& bt : tracks_) {
-    if (!bt.confirmed || bt.t[1] != t || bt.history < 2 || !(bt.t[1] > bt.t[0])) continue;
+    const double v = speed(bt);
+    if (!bt.confirmed || bt.t[1] != t || !(v > 0)) continue;
     // Below the ball that holds the track, unless the track has held it
     // for frames (its course is then better evidence than one blob's
     // strength) or a streak holds it (a streak's rank is a shape measure
     // that says nothing against a round blob's).
     if (!(c.rank < bt.rank || bt.streak || bt.hits >= kEstablishedHits)) continue;
-    const double step = dist(bt.pos[1], bt.pos[0]);
-    if (step <= 0) continue;
-    const double reach = step / (bt.t[1] - bt.t[0]) * kEchoTime;
+    const double reach = v * kEchoTime;
     double along = 0, across = 0;
     onCourse(bt, bt.pos[1], c.pos, along, across);
     if (std::abs(along) <= reach && across <= 2 * opt_.ball_radius) return true;

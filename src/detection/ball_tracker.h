@@ -70,11 +70,14 @@ class BallTracker {
   // Commits frame t's balls (`cands`, in the order they were chosen; each
   // matched): a round blob where a kicked ball lay is dropped as its stale
   // picture, streaks on their tracks' courses continue them first, then
-  // the others in order, one per track (none course_only); echoes of a ball tracked in this
-  // frame are dropped; tracks unconfirmed for 0.1 s end, and the balls
-  // that continued none start new ones.
+  // the others in order, one per track (none course_only); echoes of a
+  // ball tracked in this frame are dropped; tracks unconfirmed for 0.1 s
+  // end, and the balls that continued none start new ones (none
+  // course_only).
   void update(double t, std::vector<BallCandidate>& cands);
 
+  // mm/s over a track's last two positions (0 without two at distinct times).
+  static double speed(const BallTrack& bt);
   // Whether a track moves faster than any robot (opt max_robot_speed) over
   // its last two positions: nothing but a ball moves so.
   bool isFast(const BallTrack& bt) const;

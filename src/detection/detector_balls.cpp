@@ -269,7 +269,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     const BallTrack& bt = ball_tracker.tracks()[c.track];
     double along = 0, across = 0;
     ball_tracker.onCourse(bt, bt.predicted, c.pos, along, across);
-    const double step = bt.t[1] > bt.t[0] ? dist(bt.pos[1], bt.pos[0]) / (bt.t[1] - bt.t[0]) * frame_interval : 0;
+    const double step = BallTracker::speed(bt) * frame_interval;
     if (bt.hits < BallTracker::kEstablishedHits || across > 2 * opt.ball_radius || along < -0.5 * step) return false;
     for (const BallCandidate& o : ball_cands)
       if (o.track == c.track && !o.kicked) return false;
