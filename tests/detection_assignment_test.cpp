@@ -167,27 +167,34 @@ TEST(DetectionBalls, PinkBlobApartIsNotABall) {
 
 // A ball over-exposed in a sun patch: its blob's mean clips in red and
 // green, and only the frame's unclipped samples around it, its shaded rim,
-// show its color. Alone on the carpet it is the ball; with a pattern's dot
-// beside it, it may be a lost robot's clipped center, and is none.
+// show its color. Alone on the carpet it is the ball. With a pattern's dot
+// beside it, it may be a lost robot's clipped center: it is none where the
+// ring around it shows that robot's dark top, and the ball where it shows
+// the lit carpet (the dot a peak of that carpet: under a green cast one
+// stood 70 mm from the ball).
 TEST(DetectionBalls, AnOverExposedBlobIsJudgedByItsRimWhereItStandsAlone) {
   const CameraModel cam(test::topDownCamera());
   const FieldMm ball{3000, 1000};
-  for (int with_dot = 0; with_dot < 2; ++with_dot) {
+  enum Case { kAlone, kDotOnLitCarpet, kDotOnATop };
+  for (int k = kAlone; k <= kDotOnATop; ++k) {
+    SCOPED_TRACE(k);
     SceneBuilder s(cam, 31, {{1, 1, 1}, 1, 1, 0});
     for (auto r : s.randomRobots(3, 3, kX0, 2000, kY0, kY1)) s.addRobot(r);
     s.addBlob({ball.x, ball.y, 21.5}, ColorRef{255, 255, 130}, 0.8f);
-    if (with_dot) s.addBlob({ball.x + 60, ball.y, 140}, SceneBuilder::kGreen, 0.9f);
+    if (k != kAlone) s.addBlob({ball.x + 60, ball.y, 140}, SceneBuilder::kGreen, 0.9f);
     cv::Mat image(static_cast<int>(cam.calibration().image_height), static_cast<int>(cam.calibration().image_width),
                   CV_8UC3, cv::Scalar(50, 110, 40));
     const auto px = cam.fieldToImage({ball.x, ball.y, 21.5});
     ASSERT_TRUE(px);
     const cv::Point c(static_cast<int>(std::lround(px->u)), static_cast<int>(std::lround(px->v)));
-    cv::circle(image, c, 6, cv::Scalar(30, 110, 230), cv::FILLED);  // rim (BGR)
-    cv::circle(image, c, 1, cv::Scalar(130, 255, 255), cv::FILLED);  // clipped top
+    if (k == kDotOnLitCarpet) cv::circle(image, c, 40, cv::Scalar(100, 220, 80), cv::FILLED);  // sun patch (BGR)
+    if (k == kDotOnATop) cv::circle(image, c, 14, cv::Scalar(20, 20, 20), cv::FILLED);        // 85 mm
+    cv::circle(image, c, 3, cv::Scalar(30, 110, 230), cv::FILLED);                            // rim
+    cv::circle(image, c, 1, cv::Scalar(130, 255, 255), cv::FILLED);                           // clipped top
     Detector det(cam, FieldModel::divisionB(), DetectorOptions{});
     Detections out;
     det.process(s.list, 0, out, FrameView{&image, BayerPattern::None});
-    if (with_dot) {
+    if (k == kDotOnATop) {
       EXPECT_TRUE(out.balls.empty());
     } else {
       ASSERT_EQ(out.balls.size(), 1u);

@@ -100,5 +100,29 @@ TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {
   EXPECT_FALSE(yellow.isBall(pale));
 }
 
+// An over-exposed ball's unclipped rim is its color mixed with the carpet
+// around it. In a sun patch that carpet is lit, its chromaticity off the
+// field class's: the mix with it is a rim only where the ring's color is
+// given (colorAroundBall).
+TEST(MarkerColoredBall, AnOverExposedRimMixesWithTheCarpetAroundIt) {
+  const FrameColors colors = paintedColors();
+  const OrangeOnly judge;
+  const MarkerColoredBallTest yellow(colors, judge, kYellow);
+  const float lit[3] = {140, 250, 200};
+  float rim[3];
+  for (int k = 0; k < 3; ++k) rim[k] = (kYellowDot[k] + lit[k]) / 2;
+  const ColorVec around = feature(lit);
+  EXPECT_FALSE(yellow.isRim(rim));
+  EXPECT_TRUE(yellow.isRim(rim, &around));
+  // A mix with the field class's carpet is a rim either way; a pink dot's
+  // mix with the lit carpet is none.
+  float field_rim[3], pink_rim[3];
+  for (int k = 0; k < 3; ++k)
+    field_rim[k] = (kYellowDot[k] + kCarpet[k]) / 2, pink_rim[k] = (kPinkDot[k] + lit[k]) / 2;
+  EXPECT_TRUE(yellow.isRim(field_rim));
+  EXPECT_TRUE(yellow.isRim(field_rim, &around));
+  EXPECT_FALSE(yellow.isRim(pink_rim, &around));
+}
+
 }  // namespace
 }  // namespace dv

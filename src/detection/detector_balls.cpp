@@ -103,6 +103,15 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (j != i && blobs[j].valid && dist(raw_positions[j], raw_positions[i]) < reach) return true;
     return false;
   };
+  // Whether at least half the ring around blob i, where a robot's top
+  // would show between its center dot and its side dots, is the carpet
+  // (carpetAroundBall, by the frame's classes).
+  auto carpetAround = [&](int i) {
+    ImagePx px;
+    double r;
+    return ballInImage(i, px, r) && carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius,
+                                                     blobs[i].brightness()) >= kMinCarpetAroundBall;
+  };
   // The hue rule's cause, a thin line's demosaiced edge, lies on a marking,
   // and a robot's washed-out center dot has its side dots and its dark top
   // around it. A blob of a color no class explains with neither is a ball
@@ -140,8 +149,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       // the blob's color is read where its disc did not clip, a ball's
       // shaded rim. That is a mix with what lies around it, so it must also
       // stand alone: no other blob where a pattern's dots would be (a
-      // clipped center dot of a robot not found has them).
-      if (!b.has_unclipped || dotsAround(i)) continue;
+      // clipped center dot of a robot not found has them), or, where one
+      // is, the carpet where that robot's top would show. (Under a green
+      // cast (0.8, 1.3, 0.8) a peak of the lit carpet 70 mm from the ball,
+      // nearest to the green dots, hid it.)
+      if (!b.has_unclipped || (dotsAround(i) && !carpetAround(i))) continue;
       seen = ClippedColor(b.unclipped_rgb);
     }
     int nearest_neg = kField;
@@ -441,11 +453,16 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     // Within the class's reach (a line's false colors, a mix with the
     // carpet, are not), round and alone (no color of it beyond its rim),
     // and most of what lies around it carpet, not a robot's top.
-    // (An over-exposed blob by its rim, as findBalls judged it.)
+    // (An over-exposed blob by its rim, as findBalls judged it, a mix with
+    // the carpet the ring around it shows.)
+    if (!ballInImage(m.blob, px, r)) continue;
+    ColorVec around;
+    const bool have_around = colorAroundBall(frame_view, px, r, opt.ball_radius, around);
     const bool colored = ClippedColor(b.rgb).saturated()
-                             ? b.has_unclipped && (test.isBall(b.unclipped_rgb) || test.isRim(b.unclipped_rgb))
+                             ? b.has_unclipped && (test.isBall(b.unclipped_rgb) ||
+                                                   test.isRim(b.unclipped_rgb, have_around ? &around : nullptr))
                              : test.isBall(b.rgb);
-    if (!colored || !ballInImage(m.blob, px, r) || ballColorBeyondRim(frame_view, test, px, r)) continue;
+    if (!colored || ballColorBeyondRim(frame_view, test, px, r)) continue;
     const double carpet = carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;

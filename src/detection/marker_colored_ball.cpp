@@ -28,12 +28,15 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
-bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
+bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
-  const float d = streakColorDistance(seen, f_.color[kField], f_.color[k_]);
   const float reach = std::max(kClassSpreads * f_.spread[k_], kMinClassRadius);
-  return d <= reach && d < seen.distance(f_.color[kField]);
+  auto mixWith = [&](const ColorVec& carpet) {
+    const float d = streakColorDistance(seen, carpet, f_.color[k_]);
+    return d <= reach && d < seen.distance(carpet);
+  };
+  return mixWith(f_.color[kField]) || (around && mixWith(*around));
 }
 
 namespace {

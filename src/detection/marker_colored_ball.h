@@ -24,8 +24,13 @@ class MarkerColoredBallTest final : public BallColorTest {
       : f_(frame), judge_(judge), k_(marker_class) {}
   bool isBall(const float rgb[3]) const override;
   // An over-exposed ball's unclipped rim (unclippedDiscColor): the marker's
-  // color mixed with the carpet around it, within the class's reach.
-  bool isRim(const float rgb[3]) const;
+  // color mixed with the carpet around it, within the class's reach. That
+  // carpet is the field class's color or, where given, `around` (the ring's,
+  // colorAroundBall): the sun patch that clips the ball lights the carpet
+  // too, and under a neutral camera at 2.5 times the light the lit carpet's
+  // chromaticity moved off the field class's (a rim of (219, 210, 59) lay
+  // 14 from yellow, beyond its reach, and off the mix with the field class).
+  bool isRim(const float rgb[3], const ColorVec* around = nullptr) const;
   bool isCarpet(const float rgb[3]) const override { return judge_.isCarpet(rgb); }
 
  private:
