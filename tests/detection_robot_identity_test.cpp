@@ -82,6 +82,38 @@ TEST(RobotIdentity, WeakPeaksTakeTheRobotsOwnColorsWhereClear) {
   EXPECT_EQ(unclear.robot.seen_sides, 0b1011);
 }
 
+// One marker color split by its noise is one color: both halves lie within
+// the frame's green class's reach. (H.265 at 3 Mbit/s under a green cast,
+// chromaticities as read there: one of three green dots bluish; split off,
+// it was taken for pink, and the robot's pink weak peak for green.)
+TEST(RobotIdentity, TwoColorsWithinOneClasssReachAreOne) {
+  DetectorOptions opt;
+  auto chroma = [](float a, float b, float c) {
+    ColorVec v;
+    v.c[0] = a, v.c[1] = b, v.c[2] = c;
+    return v;
+  };
+  const ColorVec frame_green = chroma(63, 149, 77), frame_pink = chroma(112, 85, 92);
+  RobotBlobs r({800, -300}, 1.6, 14, chroma(57, 169, 63), chroma(109, 93, 88), /*weak=*/0b0001);  // P G G G
+  r.blobs[0].color = chroma(110, 133, 49);  // a yellow center
+  r.blobs[3].color = chroma(62, 143, 85);   // the bluish green, back left
+  r.blobs[4].color = chroma(66, 154, 70);
+  IdentityContext c = context(r.blobs, opt, frame_green, frame_pink);
+  c.green_spread = 10, c.pink_spread = 3.6f;
+  identifyRobot(r.robot, c);
+  EXPECT_EQ(r.robot.id, 14);
+  // Where the frame's green reaches less far (its dots alike), the bluish
+  // one stands apart: the robot's own two colors.
+  RobotBlobs apart({800, -300}, 1.6, 14, chroma(57, 169, 63), chroma(109, 93, 88), 0b0001);
+  apart.blobs[0].color = chroma(110, 133, 49);
+  apart.blobs[3].color = chroma(62, 143, 85);
+  apart.blobs[4].color = chroma(66, 154, 70);
+  IdentityContext narrow = context(apart.blobs, opt, frame_green, frame_pink);
+  narrow.green_spread = 2;
+  identifyRobot(apart.robot, narrow);
+  EXPECT_NE(apart.robot.id, 14);
+}
+
 // Where three sides are blobs, a weak peak's position does not move the
 // refitted pose.
 TEST(RobotIdentity, RefitTrustsBlobsOverAWeakPeak) {

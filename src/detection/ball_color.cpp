@@ -47,7 +47,7 @@ float BallColorJudge::explainedByNone(const ClippedColor& seen) const {
   float rel = std::numeric_limits<float>::max();
   for (int k : {kYellow, kPink, kWhite, kField}) {
     if (k == kYellow && redder_than_yellow) continue;
-    const float radius = std::max(kClassSpreads * f_.spread[k], kMinClassRadius);
+    const float radius = classReach(f_.spread[k]);
     rel = std::min(rel, seen.distance(f_.color[k]) / radius);
   }
   return rel;
@@ -106,7 +106,7 @@ double BallColorJudge::confidence(const ClippedColor& seen, bool streak, int* ne
 }
 
 bool BallColorJudge::withinFieldReach(const ClippedColor& seen) const {
-  const float reach = std::max(kClassSpreads * f_.spread[kField], kMinClassRadius);
+  const float reach = classReach(f_.spread[kField]);
   return seen.distance(f_.color[kField]) <= reach;
 }
 

@@ -15,9 +15,6 @@
 #include "pipeline/blob.h"
 
 namespace dv {
-// A class reaches kClassSpreads times the spread of its samples in this
-// frame, at least kMinClassRadius (color_classes.h).
-constexpr float kClassSpreads = 3.f;
 // A ball of an unexpected shade is at least this share as saturated as the
 // frame's yellow, both under the lines' white (line and carpet mixes are
 // far less).

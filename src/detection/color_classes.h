@@ -9,6 +9,7 @@
 // their sum), so that uneven light, dark exposure and flicker, which scale
 // all channels alike, move colors little; white balance shifts remain and
 // are what the learning absorbs.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -55,6 +56,10 @@ inline ColorVec colorMix(const ColorVec& a, float wa, const ColorVec& b, float w
 // The least distance (chromaticity units) a class reaches from its color:
 // a blob's mean color varies by a few, and one or two samples give no spread.
 constexpr float kMinClassRadius = 8.f;
+// A class reaches kClassSpreads times the spread of its samples in this
+// frame (rms distance to its color), at least kMinClassRadius.
+constexpr float kClassSpreads = 3.f;
+inline float classReach(float spread) { return std::max(kClassSpreads * spread, kMinClassRadius); }
 
 struct TwoMeansResult {
   ColorVec mean[2];     // class colors of this frame (c_c), class order as `prior`

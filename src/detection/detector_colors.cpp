@@ -132,7 +132,8 @@ void Detector::Impl::learnFrameColors() {
 
 void Detector::Impl::identifyRobots() {
   if (robots.empty()) return;
-  const IdentityContext context{&blobs, frame_color[kGreen], frame_color[kPink], frame_view, &camera, &opt};
+  IdentityContext context{&blobs, frame_color[kGreen], frame_color[kPink], frame_view, &camera, &opt};
+  context.green_spread = frame_spread[kGreen], context.pink_spread = frame_spread[kPink];
   for (auto& r : robots) identifyRobot(r, context);
   resolvePartialIds(robots);
 

@@ -24,14 +24,14 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
   const float d = seen.distance(f_.color[k_]);
-  const float reach = std::max(kClassSpreads * f_.spread[k_], kMinClassRadius);
+  const float reach = classReach(f_.spread[k_]);
   return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
 bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
-  const float reach = std::max(kClassSpreads * f_.spread[k_], kMinClassRadius);
+  const float reach = classReach(f_.spread[k_]);
   auto mixWith = [&](const ColorVec& carpet) {
     const float d = streakColorDistance(seen, carpet, f_.color[k_]);
     return d <= reach && d < seen.distance(carpet);

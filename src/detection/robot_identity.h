@@ -23,6 +23,7 @@ struct IdentityContext {
   FrameView frame;                                // may be empty: no slot is read
   const CameraModel* camera = nullptr;
   const DetectorOptions* opt = nullptr;
+  float green_spread = 0, pink_spread = 0;  // of this frame's side colors (0: unknown)
 };
 
 // Sets r.colors, r.seen_sides (bit s-1: slot s was seen) and r.id; r.team
