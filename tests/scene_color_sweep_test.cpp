@@ -439,6 +439,23 @@ const std::vector<Condition>& conditions() {
       // is a pattern's dot; lemon centers clipped white, (255, 255, 255),
       // by theirs (their rim against the robot's top).
       {"cold_sun_over_the_pale_ball_lemon", coldSunOverThePaleBallLemon},
+      // --- drawn at random within the ranges (a check beyond the
+      // sweep's own rows): tungsten, saturation 0.4, amber centers, a
+      // yellow-green. The frame showed no sample of the field class, its
+      // reference 57 from the carpet, and the washed-out ball lay 1.27 of
+      // the yellow class's reaches from it: too near to be a shade no class
+      // explains, too far to be yellow's (marker_colored_ball.h).
+      {"tungsten_saturation_0.4_amber_yellow_green_uneven", [](SceneSpec& s, int) {
+         cast(s, {1.54, 0.93, 0.67}, 0.4, 0.88);
+         s.lighting.exposure = 1.06;
+         s.lighting.uneven_ratio = 1.83;
+         s.lighting.uneven_direction = -0.19;
+         s.materials.pink = {236, 65, 167};
+         s.materials.green = {96, 192, 91};
+         s.materials.yellow = {249, 175, 11};
+         s.materials.blue = {47, 91, 173};
+         s.materials.ball = {253, 113, 20};
+       }},
   };
   return list;
 }
