@@ -112,6 +112,15 @@ TEST(RobotIdentity, TwoColorsWithinOneClasssReachAreOne) {
   narrow.green_spread = 2;
   identifyRobot(apart.robot, narrow);
   EXPECT_NE(apart.robot.id, 14);
+  // Two colors each nearer to its own class stay two, though both lie
+  // within one class's reach (a pink class spread wide by uneven light).
+  RobotBlobs two({800, -300}, 1.6, 7, chroma(80, 125, 85), chroma(110, 88, 92));  // P G P G
+  two.blobs[0].color = chroma(110, 133, 49);
+  IdentityContext wide = context(two.blobs, opt, frame_green, frame_pink);
+  wide.green_spread = 3, wide.pink_spread = 20;
+  ASSERT_LT(colorDistance(chroma(80, 125, 85), frame_pink), classReach(wide.pink_spread));
+  identifyRobot(two.robot, wide);
+  EXPECT_EQ(two.robot.id, 7);
 }
 
 // Where three sides are blobs, a weak peak's position does not move the

@@ -456,6 +456,19 @@ const std::vector<Condition>& conditions() {
          s.materials.blue = {47, 91, 173};
          s.materials.ball = {253, 113, 20};
        }},
+      // Tungsten at gamma 1.28 with lemon centers and yellow-green dots: at
+      // 1224 x 1024 the thin lines' false colors where the center circle
+      // crosses the halfway line read as a lemon center, and the crossing's
+      // arms as its four dots (dropCentersAloneAtCrossings).
+      {"tungsten_gamma_1.3_lemon_yellow_green_light_rose", [](SceneSpec& s, int) {
+         cast(s, {1.53, 1.17, 0.68}, 0.73, 1.28);
+         s.lighting.uneven_ratio = 2.2;
+         s.lighting.uneven_direction = -0.46;
+         s.materials.pink = {251, 124, 185};
+         s.materials.green = {136, 205, 61};
+         s.materials.yellow = {240, 237, 77};
+         s.materials.blue = {38, 74, 159};
+       }},
   };
   return list;
 }

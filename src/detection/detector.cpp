@@ -129,6 +129,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   learnFrameColors();
   searchAgainWithFrameColors();
   robotsAroundUnpeakedCenters();
+  dropCentersAloneAtCrossings();
   identifyRobots();
   for (auto& r : robots) {
     if (opt.robot_height_yellow != opt.robot_height_blue || weakCount(r) > 0) refit(r);

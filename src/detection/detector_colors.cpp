@@ -58,6 +58,19 @@ int Detector::Impl::dropImplausibleCenters() {
   return nr - kept;
 }
 
+void Detector::Impl::dropCentersAloneAtCrossings() {
+  // (Tungsten, lemon centers and yellow-green dots at 1224 x 1024: where
+  // the center circle crosses the halfway line, the thin lines' false
+  // colors read as a lemon center and its arms as four yellow-green dots.)
+  int kept = 0;
+  for (int i = 0; i < static_cast<int>(robots.size()); ++i) {
+    const bool drop = robots[i].n == 1 && atCrossing(blobs[robots[i].blob[0]].at_ball);
+    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = drop ? -1 : kept;
+    if (!drop) robots[kept++] = robots[i];
+  }
+  robots.resize(kept);
+}
+
 void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
   const float fp = static_cast<float>(opt.retention_force);
   const float fr = static_cast<float>(opt.reference_force);

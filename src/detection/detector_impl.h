@@ -177,6 +177,10 @@ struct Detector::Impl {
   int dropImplausibleCenters();
 
   void learnClass(int a, int b, const TwoMeansResult& r);
+  // Drops the robots that are a center alone (its dots all read from the
+  // frame) where two markings cross: the crossing's four arms are what the
+  // frame shows at the slots.
+  void dropCentersAloneAtCrossings();
 
   // This frame's class colors from its robots: the centers split into
   // yellow and blue (each robot's team), the side blobs into green and

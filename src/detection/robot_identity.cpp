@@ -56,18 +56,22 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   }
 }
 
-// Nor are two colors on one robot where both lie within one frame class's
-// reach: that is one marker color split by its noise. (H.265 at 3 Mbit/s
-// under a green cast: of a robot's three green dots one read bluish, 10
-// from the frame's green, whose reach was 24..33; split from the other two
-// it was taken for pink, and the robot's real pink, a weak peak, for
-// green.)
+// Nor are two colors on one robot where both are nearer to one frame class
+// and within its reach: that is one marker color split by its noise.
+// (H.265 at 3 Mbit/s under a green cast: of a robot's three green dots one
+// read bluish, 10 from the frame's green, whose reach was 24..33; split
+// from the other two it was taken for pink, and the robot's real pink, a
+// weak peak, for green.) Within reach alone is not enough: under uneven
+// light a class's reach grows, and pale greens and pinks under tungsten
+// both lay within the pink class's.
 void oneClassIfWithinItsReach(TwoMeansResult& res, uint8_t* lab, int m, const ColorVec* samples,
                               const IdentityContext& c) {
   const ColorVec cls[2] = {c.green, c.pink};
   const float reach[2] = {classReach(c.green_spread), classReach(c.pink_spread)};
-  for (int k = 0; k < 2; ++k) {
-    if (colorDistance(res.mean[0], cls[k]) > reach[k] || colorDistance(res.mean[1], cls[k]) > reach[k]) continue;
+  auto nearer = [&](const ColorVec& x) { return colorDistance(x, cls[0]) <= colorDistance(x, cls[1]) ? 0 : 1; };
+  const int k = nearer(res.mean[0]);
+  if (nearer(res.mean[1]) == k && colorDistance(res.mean[0], cls[k]) <= reach[k] &&
+      colorDistance(res.mean[1], cls[k]) <= reach[k]) {
     ColorVec all;
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < 3; ++j) all.c[j] += samples[i].c[j] / m;
@@ -76,7 +80,6 @@ void oneClassIfWithinItsReach(TwoMeansResult& res, uint8_t* lab, int m, const Co
     res.count[k] = m;
     res.count[1 - k] = 0;
     res.separated = false;
-    return;
   }
 }
 
