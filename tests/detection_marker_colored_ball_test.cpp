@@ -100,22 +100,6 @@ TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {
   EXPECT_FALSE(yellow.isBall(pale));
 }
 
-// Where the frame showed no sample of the field class, the carpet is what
-// lies around the ball: a carpet the cast moved within yellow's reach and
-// far from the field class's old color is no ball's, the ball still is.
-TEST(MarkerColoredBall, WhatLiesAroundStandsForAnUnseenFieldClass) {
-  const FrameColors colors = paintedColors();
-  const OrangeOnly judge;
-  const float yellowish_carpet[3] = {220, 200, 25};
-  const ColorVec around = feature(yellowish_carpet);
-  ASSERT_LT(colorDistance(around, colors.color[kYellow]), kMinClassRadius);
-  const MarkerColoredBallTest by_class(colors, judge, kYellow);
-  const MarkerColoredBallTest by_around(colors, judge, kYellow, &around);
-  EXPECT_TRUE(by_class.isBall(yellowish_carpet));
-  EXPECT_FALSE(by_around.isBall(yellowish_carpet));
-  EXPECT_TRUE(by_around.isBall(kYellowDot));
-}
-
 // An over-exposed ball's unclipped rim is its color mixed with the carpet
 // around it. In a sun patch that carpet is lit, its chromaticity off the
 // field class's: the mix with it is a rim only where the ring's color is

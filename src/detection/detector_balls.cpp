@@ -130,7 +130,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // A blob nearest to a marker's class may be a ball in that marker's
   // color (a ball clipped in a sun patch): addMarkerColoredBalls judges it.
   auto keepIfMarkerColored = [&](int i, int nearest) {
-    if (nearest == kYellow || nearest == kPink) marker_colored.push_back({i, nearest, std::nullopt});
+    if (nearest == kYellow || nearest == kPink) marker_colored.push_back({i, nearest});
   };
   ColorVec field_sum;
   int field_n = 0;
@@ -396,7 +396,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       std::optional<MarkerColoredBallTest> marker_test;
       if (marker_colored_ball)
         for (const auto& m : marker_colored)
-          if (m.blob == c.blob) marker_test.emplace(ball_colors, judge, m.cls, m.carpet ? &*m.carpet : nullptr);
+          if (m.blob == c.blob) marker_test.emplace(ball_colors, judge, m.cls);
       const BallColorTest& test = marker_test ? static_cast<const BallColorTest&>(*marker_test) : judge;
       ImagePx refined;
       if (ballSilhouetteCenter(frame_view, test, *px, r, refined)) px = refined;
@@ -445,29 +445,25 @@ bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) co
 }
 
 void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking) {
-  for (auto& m : marker_colored) {
+  for (const auto& m : marker_colored) {
     const FrameBlob& b = blobs[m.blob];
+    const MarkerColoredBallTest test(ball_colors, judge, m.cls);
     ImagePx px;
     double r;
     // Within the class's reach (a line's false colors, a mix with the
     // carpet, are not), round and alone (no color of it beyond its rim),
     // and most of what lies around it carpet, not a robot's top.
     // (An over-exposed blob by its rim, as findBalls judged it, a mix with
-    // the carpet the ring around it shows.) Where this frame showed no
-    // sample of the field class, the ring's color is the carpet, and the
-    // ring is judged by its darkness alone (marker_colored_ball.h).
+    // the carpet the ring around it shows.)
     if (!ballInImage(m.blob, px, r)) continue;
     ColorVec around;
     const bool have_around = colorAroundBall(frame_view, px, r, opt.ball_radius, around);
-    if (have_around && !ball_colors.seen[kField]) m.carpet = around;
-    const MarkerColoredBallTest test(ball_colors, judge, m.cls, m.carpet ? &*m.carpet : nullptr);
     const bool colored = ClippedColor(b.rgb).saturated()
                              ? b.has_unclipped && (test.isBall(b.unclipped_rgb) ||
                                                    test.isRim(b.unclipped_rgb, have_around ? &around : nullptr))
                              : test.isBall(b.rgb);
     if (!colored || ballColorBeyondRim(frame_view, test, px, r)) continue;
-    const double carpet =
-        carpetAroundBall(frame_view, m.carpet ? nullptr : &ball_colors, px, r, opt.ball_radius, b.brightness());
+    const double carpet = carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;
     c.blob = m.blob;

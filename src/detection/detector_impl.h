@@ -244,7 +244,6 @@ struct Detector::Impl {
   struct MarkerColoredBlob {
     int blob;
     int cls;
-    std::optional<ColorVec> carpet;  // what it stands on where the field class was not seen
   };
   std::vector<MarkerColoredBlob> marker_colored;
   void addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking);

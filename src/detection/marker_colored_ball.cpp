@@ -25,7 +25,7 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   if (seen.saturated()) return false;
   const float d = seen.distance(f_.color[k_]);
   const float reach = classReach(f_.spread[k_]);
-  return d <= reach && d < seen.distance(carpet_);
+  return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
 bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
@@ -36,7 +36,7 @@ bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) co
     const float d = streakColorDistance(seen, carpet, f_.color[k_]);
     return d <= reach && d < seen.distance(carpet);
   };
-  return mixWith(carpet_) || (around && mixWith(*around));
+  return mixWith(f_.color[kField]) || (around && mixWith(*around));
 }
 
 namespace {

@@ -17,17 +17,11 @@ namespace dv {
 
 // Ball-colored: as the frame's judge says, or within the reach of one
 // marker class of this frame (and nearer to it than to the carpet); carpet:
-// as the judge says. The carpet is the field class's color or, where given,
-// `carpet`: where this frame showed no sample of the field class, that
-// class is a color of earlier frames or its reference, and what lies around
-// the ball (colorAroundBall) stands for it. (Tungsten at saturation 0.4:
-// the field class was its reference, 57 from the carpet, and the carpet
-// around a washed-out ball lay within the yellow class's reach of 33.)
+// as the judge says.
 class MarkerColoredBallTest final : public BallColorTest {
  public:
-  MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class,
-                        const ColorVec* carpet = nullptr)
-      : f_(frame), judge_(judge), k_(marker_class), carpet_(carpet ? *carpet : frame.color[color_class::kField]) {}
+  MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class)
+      : f_(frame), judge_(judge), k_(marker_class) {}
   bool isBall(const float rgb[3]) const override;
   // An over-exposed ball's unclipped rim (unclippedDiscColor): the marker's
   // color mixed with the carpet around it, within the class's reach. That
@@ -43,7 +37,6 @@ class MarkerColoredBallTest final : public BallColorTest {
   const FrameColors& f_;
   const BallColorTest& judge_;
   int k_;
-  ColorVec carpet_;
 };
 
 // The share (0..1) of a ring around a ball at `center` (image px, radius
