@@ -19,6 +19,21 @@ int nearestSample(const ColorVec* s, int n, const ColorVec& c, int skip) {
 
 }  // namespace
 
+TwoMeansResult oneClass(const ColorVec* samples, int n, const ColorVec prior[2], int cls, uint8_t* labels) {
+  TwoMeansResult r;
+  r.mean[0] = prior[0];
+  r.mean[1] = prior[1];
+  if (n <= 0) return r;
+  ColorVec all;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) all.c[k] += samples[i].c[k] / n;
+  if (cls < 0) cls = colorDistance(all, prior[0]) <= colorDistance(all, prior[1]) ? 0 : 1;
+  for (int i = 0; i < n; ++i) labels[i] = static_cast<uint8_t>(cls);
+  r.mean[cls] = all;
+  r.count[cls] = n;
+  return r;
+}
+
 TwoMeansResult twoMeans(const ColorVec* samples, int n, const ColorVec prior[2],
                         const ColorVec* externals, int n_externals, uint8_t* labels) {
   TwoMeansResult r;
@@ -26,19 +41,8 @@ TwoMeansResult twoMeans(const ColorVec* samples, int n, const ColorVec prior[2],
   r.mean[1] = prior[1];
   if (n <= 0) return r;
 
-  // Overall mean, for the one-cluster answer.
-  ColorVec all;
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) all.c[k] += samples[i].c[k] / n;
-  auto oneCluster = [&]() {
-    const int cls = colorDistance(all, prior[0]) <= colorDistance(all, prior[1]) ? 0 : 1;
-    for (int i = 0; i < n; ++i) labels[i] = static_cast<uint8_t>(cls);
-    r.mean[cls] = all;
-    r.count[cls] = n;
-    r.count[1 - cls] = 0;
-    r.separated = false;
-    return r;
-  };
+  // The one-cluster answer: the class whose prior is nearest to the mean.
+  auto oneCluster = [&]() { return oneClass(samples, n, prior, -1, labels); };
   if (n < 2) return oneCluster();
 
   // Start each class at the sample nearest to its prior; the class whose

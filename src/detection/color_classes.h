@@ -75,6 +75,10 @@ struct TwoMeansResult {
 // their mean. No allocation.
 TwoMeansResult twoMeans(const ColorVec* samples, int n, const ColorVec prior[2],
                         const ColorVec* externals, int n_externals, uint8_t* labels);
+// The one-cluster answer: every sample of class `cls` (-1: the class
+// whose prior is nearest to their mean), their mean that class's color,
+// the other class its prior with no sample.
+TwoMeansResult oneClass(const ColorVec* samples, int n, const ColorVec prior[2], int cls, uint8_t* labels);
 
 // Which of twoMeans's two clusters is which class, from an order that no
 // global cast, saturation or gamma changes: the ratio of channel `num` to

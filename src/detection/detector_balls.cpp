@@ -105,11 +105,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   };
   // Whether at least half the ring around blob i, where a robot's top
   // would show between its center dot and its side dots, is the carpet
-  // (carpetAroundBall, by the frame's classes).
-  auto carpetAround = [&](int i) {
+  // (carpetAroundBall: by `colors`, or by darkness alone where null).
+  auto carpetAround = [&](int i, const FrameColors* colors) {
     ImagePx px;
     double r;
-    return ballInImage(i, px, r) && carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius,
+    return ballInImage(i, px, r) && carpetAroundBall(frame_view, colors, px, r, opt.ball_radius,
                                                      blobs[i].brightness()) >= kMinCarpetAroundBall;
   };
   // The hue rule's cause, a thin line's demosaiced edge, lies on a marking,
@@ -121,11 +121,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // frames. The ring is judged by darkness alone: there the carpet lay
   // nearer to the pale yellow centers than to the field class.
   auto aloneOnTheCarpet = [&](int i) {
-    ImagePx px;
-    double r;
-    return !onMarking(blobs[i].at_ball) && !dotsAround(i) && ballInImage(i, px, r) &&
-           carpetAroundBall(frame_view, nullptr, px, r, opt.ball_radius, blobs[i].brightness()) >=
-               kMinCarpetAroundBall;
+    return !onMarking(blobs[i].at_ball) && !dotsAround(i) && carpetAround(i, nullptr);
   };
   // A blob nearest to a marker's class may be a ball in that marker's
   // color (a ball clipped in a sun patch): addMarkerColoredBalls judges it.
@@ -153,7 +149,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       // is, the carpet where that robot's top would show. (Under a green
       // cast (0.8, 1.3, 0.8) a peak of the lit carpet 70 mm from the ball,
       // nearest to the green dots, hid it.)
-      if (!b.has_unclipped || (dotsAround(i) && !carpetAround(i))) continue;
+      if (!b.has_unclipped || (dotsAround(i) && !carpetAround(i, &ball_colors))) continue;
       seen = ClippedColor(b.unclipped_rgb);
     }
     int nearest_neg = kField;

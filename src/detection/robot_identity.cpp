@@ -71,16 +71,8 @@ void oneClassIfWithinItsReach(TwoMeansResult& res, uint8_t* lab, int m, const Co
   auto nearer = [&](const ColorVec& x) { return colorDistance(x, cls[0]) <= colorDistance(x, cls[1]) ? 0 : 1; };
   const int k = nearer(res.mean[0]);
   if (nearer(res.mean[1]) == k && colorDistance(res.mean[0], cls[k]) <= reach[k] &&
-      colorDistance(res.mean[1], cls[k]) <= reach[k]) {
-    ColorVec all;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < 3; ++j) all.c[j] += samples[i].c[j] / m;
-    for (int i = 0; i < m; ++i) lab[i] = static_cast<uint8_t>(k);
-    res.mean[k] = all;
-    res.count[k] = m;
-    res.count[1 - k] = 0;
-    res.separated = false;
-  }
+      colorDistance(res.mean[1], cls[k]) <= reach[k])
+    res = oneClass(samples, m, cls, k, lab);
 }
 
 }  // namespace
