@@ -52,6 +52,20 @@ void coldSunOverThePaleBallLemon(SceneSpec& s, int) {
   s.lighting.sun_patches = {{{-1500, 600}, 600, 600, 0.0, 2.0, 0.2}};
 }
 
+// Drawn at random (scripts/random_venues.py 57 --extreme): tungsten at
+// exposure 1.4, saturation 0.4, lemon and navy centers, magenta and teal dots.
+void tungstenExposedWashedLemonNavy(SceneSpec& s, int) {
+  cast(s, {1.56, 1.04, 0.65}, 0.42, 1.11);
+  s.lighting.exposure = 1.39;
+  s.lighting.uneven_ratio = 1.58;
+  s.lighting.uneven_direction = 2.98;
+  s.materials.pink = {239, 76, 171};
+  s.materials.green = {44, 175, 130};
+  s.materials.yellow = {240, 239, 78};
+  s.materials.blue = {39, 74, 159};
+  s.materials.ball = {247, 94, 20};
+}
+
 // A green cast with teal and light rose markers, dark and noisy.
 void greenCastTealRose(SceneSpec& s, int) {
   cast(s, {0.8, 1.3, 0.8}, 0.7);
@@ -460,6 +474,40 @@ const std::vector<Condition>& conditions() {
 
 class SceneColorSweep : public ::testing::TestWithParam<size_t> {};
 
+// Lemon centers at exposure 1.4 under tungsten and saturation 0.4 wash out
+// to (250, 253, 200), navy ones stay (75, 85, 95): far apart, but in a
+// first frame the split was weighed against the reference green and pink
+// (eq. 5.24), which every washed-out marker lies far from, and failed; the
+// lemon centers, nearer the lines' white than the one cluster's mean, were
+// dropped as line-colored (drawn at random: scripts/random_venues.py 57
+// --extreme lost 7 of 8 yellow robots). Now the split is weighed against
+// the side colors the frame shows (clusterCenters; without it placement 0
+// at 2448 x 2048: recall 0.500), and a center that made no peak inside four
+// side blobs needs only be nearer one team than the other
+// (teamOfFullPattern), by brightness where it clipped white (without the
+// rule placement 1 at 1224 x 1024: recall 0.818; by chromaticity alone,
+// ids 0.900). The rest (an open condition below) are robots with two dots
+// peaked, or three around a white center, which a sun-clipped ball among
+// lit carpet peaks shows too.
+TEST(SceneColorSweepWashedLemon, WashedOutCentersKeepTheirTeam) {
+  struct Case {
+    int placement;
+    bool half;
+    double recall;  // measured: 0.909, 0.818
+  };
+  for (const Case& c : {Case{1, true, 0.9}, Case{0, false, 0.8}}) {
+    SceneScore s;
+    score(conditionScene({"tungsten_exposure_1.4_saturation_0.4_lemon_navy", tungstenExposedWashedLemonNavy},
+                         c.placement, c.half),
+          1, true, s);
+    SCOPED_TRACE("placement " + std::to_string(c.placement) + (c.half ? " at 1224 x 1024" : " at 2448 x 2048"));
+    EXPECT_GE(s.recall(), c.recall);
+    EXPECT_EQ(s.precision(), 1.0);
+    EXPECT_EQ(s.idAccuracy(), 1.0);
+    EXPECT_EQ(s.ballRecall(), 1.0);
+  }
+}
+
 // The placement of green_cast_teal_rose_dark_noisy at 2448 x 2048 where a
 // robot showed its center, a teal and a pale rose blob, its other two rose
 // dots no peak: the first search judged them against the reference pink
@@ -588,6 +636,9 @@ const std::vector<Condition>& openConditions() {
          s.lighting.uneven_ratio = 3.0;
          s.lighting.uneven_direction = 1.0;
        }},
+      // See SceneColorSweepWashedLemon (recall 0.773..0.909 at 1224 x 1024,
+      // 0.818..0.909 at 2448 x 2048 over the four placements).
+      {"tungsten_exposure_1.4_saturation_0.4_lemon_navy", tungstenExposedWashedLemonNavy},
       // Drawn at random within the ranges: tungsten, saturation
       // 0.4, amber centers, a yellow-green (ball 0.250 at 1224 x 1024). The
       // frame showed no sample of the field class, its reference 57 from

@@ -24,6 +24,8 @@ class ClippedColor {
   // Two or three channels clipped: with two free channels nearly any hue
   // fits (a clipped yellow reaches orange), so the color says too little.
   bool saturated() const { return n_clipped_ >= 2; }
+  // All three clipped: no hue is left, only "brighter than the sensor".
+  bool white() const { return n_clipped_ == 3; }
   // Smallest chromaticity distance from `c` to the candidate colors; the
   // plain distance when nothing or everything clipped. Two clipped channels
   // grow together (the colors whose two channels are alike: a pale

@@ -21,13 +21,33 @@ ColorVec Detector::Impl::centerColor(const FrameBlob& b) {
   return readByRim(b) ? colorFeature(b.unclipped_rgb[0], b.unclipped_rgb[1], b.unclipped_rgb[2]) : b.color;
 }
 
+TwoMeansResult Detector::Impl::splitSides(const ColorVec ext[2]) {
+  samples.clear();
+  for (const auto& r : robots)
+    for (int i = 1; i < r.n; ++i)
+      if (!blobs[r.blob[i]].weak) samples.push_back(blobs[r.blob[i]].color);
+  labels.resize(samples.size());
+  const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
+  auto res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  orderByRatio(res, 0, 1);  // red over green: pink's far above green's
+  return res;
+}
+
 TwoMeansResult Detector::Impl::clusterCenters() {
+  // The team split is weighed against the side colors this frame shows,
+  // not the classes: in a first frame those are still the references,
+  // and a washed-out frame's markers all lie far from them (lemon centers
+  // at exposure 1.4 under tungsten, saturation 0.4: the split from navy
+  // failed eq. 5.24 by 0.1 against the reference green and pink, and every
+  // yellow robot was dropped as a line-colored center).
+  const ColorVec teams[2] = {classes[kYellow].color, classes[kBlue].color};
+  const TwoMeansResult sides = splitSides(teams);
+  const ColorVec ext[2] = {sides.count[0] > 0 ? sides.mean[0] : classes[kGreen].color,
+                           sides.count[1] > 0 ? sides.mean[1] : classes[kPink].color};
   samples.clear();
   for (const auto& r : robots) samples.push_back(centerColor(blobs[r.blob[0]]));
   labels.resize(samples.size());
-  const ColorVec prior[2] = {classes[kYellow].color, classes[kBlue].color};
-  const ColorVec ext[2] = {classes[kGreen].color, classes[kPink].color};
-  TwoMeansResult r = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
+  TwoMeansResult r = twoMeans(samples.data(), static_cast<int>(samples.size()), teams, ext, 2, labels.data());
   orderByRatio(r, 2, 1);  // blue over green: blue's far above yellow's
   return r;
 }
@@ -105,6 +125,9 @@ void Detector::Impl::learnFrameColors() {
     health.teams_separated = res.separated;
     for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
+    float sum[2] = {0, 0};
+    for (int i = 0; i < nr; ++i) sum[labels[i]] += blobs[robots[i].blob[0]].brightness();
+    for (int k = 0; k < 2; ++k) team_brightness[k] = res.count[k] > 0 ? sum[k] / res.count[k] : 0.f;
     // The reddest yellow center under the lines' white: a color redder
     // than every one of them is no yellow the frame shows (explainedByNone).
     // A center clipped in a channel shows a color it does not have (a
@@ -120,17 +143,9 @@ void Detector::Impl::learnFrameColors() {
   }
 
   // Side blobs of all robots: green vs pink; the team colors are external.
-  // Weak peaks' colors are too noisy to learn from.
-  samples.clear();
-  for (const auto& r : robots)
-    for (int i = 1; i < r.n; ++i)
-      if (!blobs[r.blob[i]].weak) samples.push_back(blobs[r.blob[i]].color);
-  labels.resize(samples.size());
   {
-    const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
-    const ColorVec ext[2] = {frame_color[kYellow], frame_color[kBlue]};
-    auto res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
-    orderByRatio(res, 0, 1);  // red over green: pink's far above green's
+    const ColorVec teams[2] = {frame_color[kYellow], frame_color[kBlue]};
+    const TwoMeansResult res = splitSides(teams);
     health.side_blobs = static_cast<int>(samples.size());
     health.sides_separated = res.separated;
     // This frame's side colors seed the per-robot clustering.

@@ -60,6 +60,7 @@ struct Detector::Impl {
   float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
   NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
   float yellow_hue_min = 0;           // of this frame's unclipped yellow centers (learnFrameColors)
+  float team_brightness[2] = {0, 0};  // mean r + g + b of this frame's yellow, blue centers (0: none)
   float min_saturation = 0;
   DetectionHealth health;             // of the last frame
   ColorMap color_map;                 // references -> this camera's colors
@@ -139,6 +140,14 @@ struct Detector::Impl {
   bool teamColored(const ClippedColor& seen, Team* team = nullptr) const;
   // The same for green or pink: a marker of a robot's side.
   bool sideColored(const ClippedColor& seen) const;
+  // The team of a center whose four side blobs all peaked: the pattern is
+  // the robot's evidence, so its center need only be nearer to yellow or
+  // blue than to the field (over-exposure washes a lemon center nearer to
+  // the lines' white, and to the side colors, than to either team), where
+  // the frame showed centers of both teams (else teamColored). One
+  // clipped in all three channels has no hue left, only its brightness:
+  // it is of the team whose centers this frame shows brighter.
+  bool teamOfFullPattern(const ClippedColor& seen, Team* team) const;
   // Robots whose center made no blob: the pixel stage's color gate judges
   // a center against the lines' white, and a pale center clipped in two
   // channels (sky blue in a sun patch, (150, 255, 255) beside lines of
@@ -146,7 +155,8 @@ struct Detector::Impl {
   // side blobs (min_side_blobs of them) fit the pattern tightly
   // (min_weak_fit) around a place where no blob peaked, the center's color
   // is read from the frame there: as bright as a marker and team-colored
-  // (teamColored), it is the robot, its center appended to `blobs`.
+  // (teamColored; teamOfFullPattern with four sides), it is the robot, its
+  // center appended to `blobs`.
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
   // Side blobs a (slot sa) and b (slot sb) with the free blobs partner[0, k)
@@ -167,9 +177,13 @@ struct Detector::Impl {
   // the lines' white of this frame.
   void orderByRatio(TwoMeansResult& r, int num, int den);
   // Center blob colors of the robot hypotheses in two classes, yellow vs
-  // blue, with green and pink as the external colors (eq. 5.24); the labels
-  // are left in `labels`.
+  // blue, with this frame's green and pink (splitSides) as the external
+  // colors (eq. 5.24); the labels are left in `labels`.
   TwoMeansResult clusterCenters();
+  // The robots' side blobs (weak peaks aside: too noisy to learn from) in
+  // two classes, green vs pink, the team colors `ext` as external; the
+  // samples and labels are left in `samples` and `labels`.
+  TwoMeansResult splitSides(const ColorVec ext[2]);
 
   // Drops the robots whose center looks like the field or a line more than
   // like its team's color, marks those centers implausible, and returns how

@@ -39,6 +39,18 @@ bool Detector::Impl::sideColored(const ClippedColor& seen) const {
   return nearerToEither(seen, frame_color, kGreen, kPink, nullptr);
 }
 
+bool Detector::Impl::teamOfFullPattern(const ClippedColor& seen, Team* team) const {
+  // Nearer to one team than the other means something only where both
+  // are this frame's colors, not a class's reference.
+  if (!frame_seen[kYellow] || !frame_seen[kBlue]) return teamColored(seen, team);
+  const float d_yellow = seen.distance(frame_color[kYellow]), d_blue = seen.distance(frame_color[kBlue]);
+  if (!(std::min(d_yellow, d_blue) < seen.distance(frame_color[kField]))) return false;
+  *team = d_yellow <= d_blue ? Team::Yellow : Team::Blue;
+  if (seen.white() && team_brightness[0] > 0 && team_brightness[1] > 0)
+    *team = team_brightness[0] >= team_brightness[1] ? Team::Yellow : Team::Blue;
+  return true;
+}
+
 int Detector::Impl::robotsAroundUnpeakedCenters() {
   if (!frame_view.image || !opt.probe_missing_sides) return 0;
   auto free = [&](int i) {
@@ -133,7 +145,8 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
   float sides = 0;
   for (int i = 1; i < h.n; ++i) sides += blobs[h.blob[i]].brightness();
   if (seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * sides / (h.n - 1)) return false;
-  if (!teamColored(ClippedColor(seen.rgb), &h.team)) return false;
+  const ClippedColor center(seen.rgb);
+  if (!(h.n == kPatternSlots ? teamOfFullPattern(center, &h.team) : teamColored(center, &h.team))) return false;
   for (int i = 0; i < 3; ++i) center_rgb[i] = seen.rgb[i];
   h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kThreeSidePenalty) *
            kUnpeakedCenterRankFactor;
