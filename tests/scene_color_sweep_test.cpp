@@ -66,6 +66,21 @@ void tungstenExposedWashedLemonNavy(SceneSpec& s, int) {
   s.materials.ball = {247, 94, 20};
 }
 
+// Drawn at random (scripts/random_venues.py 301 420, #314): a warm cast
+// at saturation 0.4 and gamma 1.23, a sun patch of 1.67 over the ball.
+void warmDesaturatedSunOverTheBall(SceneSpec& s, int) {
+  cast(s, {1.42, 0.84, 0.82}, 0.40, 1.23);
+  s.lighting.exposure = 0.88;
+  s.lighting.uneven_ratio = 1.25;
+  s.lighting.uneven_direction = 0.29;
+  s.materials.pink = {244, 95, 177};
+  s.materials.green = {74, 185, 107};
+  s.materials.yellow = {242, 227, 66};
+  s.materials.blue = {82, 156, 228};
+  s.materials.ball = {251, 108, 20};
+  s.lighting.sun_patches = {{{s.ball.position.x, s.ball.position.y}, 600, 500, 0.3, 1.67, 0.25}};
+}
+
 // A green cast with teal and light rose markers, dark and noisy.
 void greenCastTealRose(SceneSpec& s, int) {
   cast(s, {0.8, 1.3, 0.8}, 0.7);
@@ -636,6 +651,16 @@ const std::vector<Condition>& openConditions() {
          s.lighting.uneven_ratio = 3.0;
          s.lighting.uneven_direction = 1.0;
        }},
+      // A ball in a sun patch under a warm cast at saturation 0.4, (239,
+      // 169, 121), nearer the yellow class than any other, is judged as a
+      // marker-colored ball, which must stand on the carpet. The frame has
+      // no field sample, the field class is still its reference, 52 from
+      // the carpet, and the sun-lit ring lies nearer the teams' classes: no
+      // carpet at all (ball 0.000 at 1224 x 1024, 1.000 at 2448 x 2048;
+      // robots 0.977 and 0.989, not looked at). Judging the ring with the
+      // carpet beside the lines found it (0.750) but let a line's false
+      // colors on a marking through (robustness.md).
+      {"warm_saturation_0.4_gamma_1.2_sun_over_the_ball", warmDesaturatedSunOverTheBall},
       // See SceneColorSweepWashedLemon (recall 0.773..0.909 at 1224 x 1024,
       // 0.818..0.909 at 2448 x 2048 over the four placements).
       {"tungsten_exposure_1.4_saturation_0.4_lemon_navy", tungstenExposedWashedLemonNavy},
