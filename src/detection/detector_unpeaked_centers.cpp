@@ -46,8 +46,7 @@ bool Detector::Impl::teamOfFullPattern(const ClippedColor& seen, Team* team) con
   const float d_yellow = seen.distance(frame_color[kYellow]), d_blue = seen.distance(frame_color[kBlue]);
   if (!(std::min(d_yellow, d_blue) < seen.distance(frame_color[kField]))) return false;
   *team = d_yellow <= d_blue ? Team::Yellow : Team::Blue;
-  if (seen.white() && team_brightness[0] > 0 && team_brightness[1] > 0)
-    *team = team_brightness[0] >= team_brightness[1] ? Team::Yellow : Team::Blue;
+  if (seen.white()) *team = team_brightness[0] >= team_brightness[1] ? Team::Yellow : Team::Blue;
   return true;
 }
 
