@@ -572,6 +572,40 @@ TEST(SceneColorSweepFarTilt, WeakCenterBesideASideBlobAndNoPaleYellowBall) {
   expectHeldAt({"tilt_35_tungsten_overexposed", tilt35TungstenOverexposed}, {1, 2}, true);
 }
 
+// Random venue #314's ball in a sun patch under a warm cast at saturation
+// 0.4, (239, 169, 121), lies nearer the yellow centers than any class, so
+// it is judged as a marker-colored ball, which must stand on the carpet.
+// The frame had no carpet peak to learn the field class from: it was still
+// its reference, 52 from the carpet, the sun-lit ring around the ball lay
+// nearer the teams' classes, and no ring sample counted as carpet. The
+// ring is now judged with the carpet the pixel stage reads beside the
+// lines: without that these placements lose the ball (placement 0 still
+// does, the open condition below).
+TEST(SceneColorSweepSunBall, TheRingAroundALitBallIsJudgedByTheCarpetBesideTheLines) {
+  for (int k : {1, 2, 3}) {
+    SceneScore s;
+    score(conditionScene({"warm_saturation_0.4_gamma_1.2_sun_over_the_ball", warmDesaturatedSunOverTheBall}, k, true),
+          1, true, s);
+    SCOPED_TRACE("placement " + std::to_string(k));
+    EXPECT_EQ(s.ballRecall(), 1.0);
+    EXPECT_EQ(s.ballPrecision(), 1.0);
+  }
+}
+
+// That carpet let a thin line's false color through: in the far tilt's
+// frame without the ball, the mosaic's pale yellow on the defense area's
+// line, (204, 204, 110), nearest yellow, with carpet by the lines on both
+// sides, was a marker-colored ball. On a marking such a blob must now show
+// a whole ball's round silhouette (a false color follows the line); a
+// clipped one is judged by its rim as before (a ball in a sun patch on a
+// line, random venues #96 and #212, keeps its ball). Without it placement
+// 1 shows a false ball.
+TEST(SceneColorSweepFarTilt, AMarkerColoredBlobOnALineMustBeRound) {
+  SceneScore s;
+  score(conditionScene({"tilt_35_tungsten_overexposed", tilt35TungstenOverexposed}, 1, true, false), 1, true, s);
+  EXPECT_EQ(s.balls_detected, 0);
+}
+
 // A blue-green carpet under cold LED at 2448 x 2048: a weak peak of the
 // carpet's texture (score 0.07, reading as sky blue), a darker patch that
 // peaked as a blob (20, 101, 149) near the teal class and a second weak
@@ -657,9 +691,9 @@ const std::vector<Condition>& openConditions() {
       // no field sample, the field class is still its reference, 52 from
       // the carpet, and the sun-lit ring lies nearer the teams' classes: no
       // carpet at all (ball 0.000 at 1224 x 1024, 1.000 at 2448 x 2048;
-      // robots 0.977 and 0.989, not looked at). Judging the ring with the
-      // carpet beside the lines found it (0.750) but let a line's false
-      // colors on a marking through (robustness.md).
+      // robots 0.977 and 0.989, not looked at). The ring is now judged
+      // with the carpet beside the lines: 0.750 at 1224 x 1024
+      // (SceneColorSweepSunBall); placement 0 still loses it.
       {"warm_saturation_0.4_gamma_1.2_sun_over_the_ball", warmDesaturatedSunOverTheBall},
       // See SceneColorSweepWashedLemon (recall 0.773..0.909 at 1224 x 1024,
       // 0.818..0.909 at 2448 x 2048 over the four placements).

@@ -105,6 +105,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   health = {};
   // White is what the lines show in this frame, never a fixed color.
   neutral = list.neutral;
+  carpet = list.carpet;
   min_saturation = list.min_saturation;
   if (neutral.valid) {
     classes[kWhite].color = colorFeature(neutral.rgb[0], neutral.rgb[1], neutral.rgb[2]);

@@ -85,6 +85,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ball_colors.yellow_hue_min = yellow_hue_min;
   ball_colors.mapped_orange.reset();
   if (color_map.valid()) ball_colors.mapped_orange = color_map.apply(classes[kOrange].reference);
+  ring_colors = ball_colors;
+  if (carpet.valid) {
+    ring_colors.color[kField] = colorFeature(carpet.rgb[0], carpet.rgb[1], carpet.rgb[2]);
+    ring_colors.seen[kField] = true;
+  }
   const BallColorJudge judge(ball_colors, min_ball_brightness);
   const BallColorJudge judge_unfaded(ball_colors, min_ball_brightness, false);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
@@ -459,7 +464,15 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
                                                    test.isRim(b.unclipped_rgb, have_around ? &around : nullptr))
                              : test.isBall(b.rgb);
     if (!colored || ballColorBeyondRim(frame_view, test, px, r)) continue;
-    const double carpet = carpetAroundBall(frame_view, &ball_colors, px, r, opt.ball_radius, b.brightness());
+    // On a marking, a thin line's demosaiced false color can lie in a
+    // marker's reach with the carpet beside it: there the blob must show a
+    // whole ball's round silhouette. A clipped blob's own color says too
+    // little for one; it was judged by its rim.
+    ImagePx whole;
+    if (!ClippedColor(b.rgb).saturated() && onMarking(b.at_ball) &&
+        !ballSilhouetteCenter(frame_view, test, px, r, whole))
+      continue;
+    const double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
     BallCandidate c;
     c.blob = m.blob;

@@ -59,6 +59,7 @@ struct Detector::Impl {
   bool frame_seen[kNumClasses];       // class had samples in this frame
   float frame_spread[kNumClasses];    // rms distance of its samples to frame_color (0: unknown)
   NeutralColor neutral;               // the lines' color this frame (BlobList::neutral)
+  CarpetColor carpet;                 // the carpet beside them (BlobList::carpet)
   float yellow_hue_min = 0;           // of this frame's unclipped yellow centers (learnFrameColors)
   float team_brightness[2] = {0, 0};  // mean r + g + b of this frame's yellow, blue centers (0: none)
   float min_saturation = 0;
@@ -277,6 +278,13 @@ struct Detector::Impl {
   bool seenStretched(const FieldMm& p) const;
   // This frame's colors for the ball's color judge (ball_color.h).
   FrameColors ball_colors;
+  // The same with the field as the carpet beside the lines shows it, for
+  // the ring around a ball (carpetAroundBall). The field class learns from
+  // the carpet's clutter peaks, which a frame may lack: under tungsten at
+  // saturation 0.4 with a sun patch over the ball it was still its
+  // reference, 52 from the carpet, the teams' classes lay nearer, and the
+  // lit ring around the ball counted as no carpet.
+  FrameColors ring_colors;
 
   std::vector<FieldMm> raw_positions;  // per blobs[] entry, on the rectification plane
   double plane_height = 150;

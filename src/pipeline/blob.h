@@ -27,6 +27,15 @@ struct NeutralColor {
   int samples = 0;  // line samples the estimate rests on
 };
 
+// The carpet beside the white lines in one frame (pipeline/blob_color_gate.h),
+// 0..255 per channel, the median over the line samples: the field's color
+// as this frame shows it. Valid where the lines were seen where the
+// geometry puts them.
+struct CarpetColor {
+  bool valid = false;
+  float rgb[3] = {0, 0, 0};
+};
+
 // Where the detector expects a faint object in the next frame: a fast
 // ball's place on its course, on the rectification plane (field mm). A
 // compressed stream can wash such a ball out to a weak peak; weak peaks
@@ -47,6 +56,7 @@ struct BlobList {
   // where a robot pattern of strong blobs predicts a side blob.
   std::vector<Blob> weak;
   NeutralColor neutral;
+  CarpetColor carpet;
   // The saturation (max - min) / max, after the lines' white balance, a
   // blob needed in this frame (blob_color_gate.h).
   float min_saturation = 0;

@@ -59,6 +59,14 @@ class BlobColorGate {
   float chromaDistance2(const float x[3], const float y[3]) const;
 
   const NeutralColor& neutral() const { return neutral_; }
+  // The median carpet beside the lines (invalid where the lines were not
+  // seen: then the samples need not be carpet).
+  CarpetColor carpet() const {
+    CarpetColor c;
+    c.valid = carpet_valid_ && neutral_.valid;
+    for (int k = 0; k < 3; ++k) c.rgb[k] = carpet_rgb_[k];
+    return c;
+  }
   float threshold() const { return threshold_; }
   // After endPeaks: the squared chroma distance (chroma axes, 0..255 rgb)
   // from the carpet of the most colored of the frame's colored strong

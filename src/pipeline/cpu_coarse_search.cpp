@@ -268,6 +268,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
       },
       streak_markings, raw, opt.bayer, streak_levels, out.blobs, streak_later, grid.scale, color_gate);
   out.neutral = color_gate.neutral();
+  out.carpet = color_gate.carpet();
   out.min_saturation = color_gate.threshold();
   times = coarse->times;
   times.bayer_ms += bin_ms;

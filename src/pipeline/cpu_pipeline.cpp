@@ -275,6 +275,7 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
   if (coarse) return coarseProcess(raw, out);
   color_gate.measureNeutral(raw, opt.bayer);
   out.neutral = color_gate.neutral();
+  out.carpet = color_gate.carpet();
   const auto t_start = std::chrono::steady_clock::now();
   auto t0 = t_start;
 

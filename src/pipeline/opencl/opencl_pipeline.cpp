@@ -165,6 +165,7 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
   }
   color_gate_.endPeaks();
   out.neutral = color_gate_.neutral();
+  out.carpet = color_gate_.carpet();
   out.min_saturation = color_gate_.threshold();
   // The fast-ball pass weighs streaks against this frame's marker contrast.
   if (!engine_->runStreaks(streakLevels(color_gate_.markerContrast(), engine_->lastLumaMean()))) {
