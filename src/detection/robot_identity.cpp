@@ -1,9 +1,23 @@
 #include "detection/robot_identity.h"
 
+#include "detection/clipped_color.h"
 #include "detection/weak_sides.h"
 
 namespace dv {
 namespace {
+
+// Whether `dot` lies on pink's side of the lines' `white` along the line
+// from green to pink. A dot lit toward white stays on its own side: a green
+// dot at a sun patch's edge, (94, 106, 93) against the others' (83, 127,
+// 82), was redder than they and split from them as pink, yet it lay on
+// green's side of the white, (94, 102, 98). Not for a dot clipped in all
+// three channels: it has no hue left (a pink one at (242, 247, 241) lay
+// on green's side of a white of (218, 226, 226)).
+bool pinkSideOfWhite(const ColorVec& dot, const ColorVec& white, const ColorVec& green, const ColorVec& pink) {
+  float along = 0;
+  for (int k = 0; k < 3; ++k) along += (dot.c[k] - white.c[k]) * (pink.c[k] - green.c[k]);
+  return along > 0;
+}
 
 // The side slots of `r` that neither a blob nor a weak peak filled: the
 // color the camera saw there (seen_color.h), when clearly nearer to the
@@ -19,12 +33,14 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   // light they share, by the same reading.
   ColorVec dot[4];
   bool read[4] = {false, false, false, false};
+  bool hueless[4] = {false, false, false, false};  // clipped in all three channels
   int n_read = 0;
   for (int s = 1; s < kPatternSlots; ++s) {
     const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
     const SeenColor seen = seenDiscColor(c.frame, *c.camera, {p.x, p.y, z}, c.opt->probe_radius);
     if (seen.share < c.opt->min_probe_share) continue;
     dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
+    hueless[s - 1] = ClippedColor(seen.rgb).white();
     read[s - 1] = true;
     ++n_read;
   }
@@ -32,7 +48,8 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     // All four dots in view: where they are of two colors they split by
     // themselves (the redder is pink, whatever the cast; a pale pink that
     // clipped toward white lies clearly nearer to neither frame class),
-    // taken where the sides seen as blobs keep their colors.
+    // taken where the sides seen as blobs keep their colors and each dot
+    // read instead lies on its label's side of the white.
     const ColorVec prior[2] = {green, pink};
     const ColorVec ext[1] = {blobs[r.blob[0]].color};
     uint8_t lab[4];
@@ -41,6 +58,7 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     bool agrees = res.separated;
     for (int s = 0; s < 4 && agrees; ++s)
       if (r.seen_sides >> s & 1) agrees = colors[s] == (lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink);
+      else if (c.white && !hueless[s]) agrees = pinkSideOfWhite(dot[s], *c.white, green, pink) == (lab[s] == 1);
     if (agrees) {
       for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
       r.seen_sides = 0xF;

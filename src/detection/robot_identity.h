@@ -24,6 +24,7 @@ struct IdentityContext {
   const CameraModel* camera = nullptr;
   const DetectorOptions* opt = nullptr;
   float green_spread = 0, pink_spread = 0;  // of this frame's side colors (0: unknown)
+  const ColorVec* white = nullptr;          // the lines' color this frame (null: not seen)
 };
 
 // Sets r.colors, r.seen_sides (bit s-1: slot s was seen) and r.id; r.team
