@@ -9,7 +9,8 @@
 // ball (H.265's B-frames show one where the ball lay before its kick).
 // The same under a camera's color cast, where the stream's coarse chroma
 // fades the ball's streak toward pink or yellow (ball bars only: the robots'
-// figures are printed).
+// figures are printed), and under dark tungsten, where most robots are
+// lost, the robots found hold their precision.
 // Skips where ffmpeg lacks the encoder.
 #include <gtest/gtest.h>
 
@@ -50,9 +51,13 @@ void writeCastScene(const std::string& path, const std::string& lighting) {
   std::ofstream(path) << yaml;
 }
 
+// Which bars a run is held to: all, the ball's, or the robots' precision.
+enum class Bars { All, Ball, Precision };
+
 // `lighting`: empty for the preset as it is, else YAML lines for its
-// lighting block (then only the ball's bars are held).
-void runCodecs(double scale, int frames, std::initializer_list<Codec> codecs, const std::string& lighting = "") {
+// lighting block.
+void runCodecs(double scale, int frames, std::initializer_list<Codec> codecs, const std::string& lighting = "",
+               Bars bars = Bars::All) {
   TempDir dir("dv_codec");
   std::string out;
   char scale_arg[32];
@@ -97,11 +102,13 @@ void runCodecs(double scale, int frames, std::initializer_list<Codec> codecs, co
                 precision, ids, ball_recall, false_balls, o["balls"]["position_error_mm"]["median"].get<double>(),
                 o["balls"]["position_error_mm"]["p95"].get<double>());
     SCOPED_TRACE(std::string(c.encoder) + " " + c.bitrate);
-    EXPECT_GE(ball_recall, 0.99);
-    EXPECT_LE(false_balls, 0.02);
-    if (!lighting.empty()) continue;
+    if (bars != Bars::Precision) {
+      EXPECT_GE(ball_recall, 0.99);
+      EXPECT_LE(false_balls, 0.02);
+    }
+    if (bars != Bars::Ball) EXPECT_GE(precision, 0.995);
+    if (bars != Bars::All) continue;
     EXPECT_GE(robot_recall, 0.99);
-    EXPECT_GE(precision, 0.995);
     EXPECT_GE(ids, 0.99);
   }
 }
@@ -134,14 +141,27 @@ TEST(CliCodec, UnderACastTheFastBallKeepsItsRecall) {
     SCOPED_TRACE(cast);
     std::printf("%s", cast);
     if (!full) {
-      runCodecs(0.5, 24, {{"libx264", "3M"}, {"libx264", "8M"}}, cast);
+      runCodecs(0.5, 24, {{"libx264", "3M"}, {"libx264", "8M"}}, cast, Bars::Ball);
       continue;
     }
-    runCodecs(0.5, 24, {{"libx264", "3M"}, {"libx264", "5M"}, {"libx264", "8M"}, {"libx265", "3M"}}, cast);
+    runCodecs(0.5, 24, {{"libx264", "3M"}, {"libx264", "5M"}, {"libx264", "8M"}, {"libx265", "3M"}}, cast,
+              Bars::Ball);
     // (H.265 at 2448 x 2048 under tungsten shows a false ball: a robot's
     // pink dot copied to where the robot was, read as a faded ball; open.)
-    runCodecs(1.0, 24, {{"libx264", "3M"}, {"libx264", "5M"}, {"libx264", "8M"}}, cast);
+    runCodecs(1.0, 24, {{"libx264", "3M"}, {"libx264", "5M"}, {"libx264", "8M"}}, cast, Bars::Ball);
   }
+}
+
+// Tungsten at saturation 0.4 and gamma 0.6: the blue centers and green dots
+// come out nearly gray and most robots are lost in video (robots 0.24 in
+// H.264 at 3 Mbit/s, robustness.md), but a robot found must not take a
+// wrong id. The lines clip toward a greenish white there, (232, 242, 213),
+// so every dot lies on pink's side of them: judging each dot read from the
+// frame by that side made 29 of the 69 robots found all pink (id 9).
+TEST(CliCodec, UnderDarkTungstenNoRobotFoundTakesAWrongId) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "no ffmpeg on this machine";
+  runCodecs(0.5, 24, {{"libx264", "3M"}}, "  white_balance: [1.6, 1.0, 0.6]\n  saturation: 0.4\n  gamma: 0.6\n",
+            Bars::Precision);
 }
 
 }  // namespace
