@@ -88,5 +88,31 @@ lighting:
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Extreme venue #56: a sun patch of 2.24 over the ball under a cold cast
+// lights the carpet around it into weak peaks where a pattern's dots would
+// lie: a robot of the clipped ball and the carpet, and no ball. A weak peak
+// colored as the carpet just beyond the robot's rim, and no brighter than
+// a marker over it, is no marker (hypothesis_search.cpp).
+TEST(SceneRandomVenue, ALitBallAmongCarpetPeaksIsNoRobot) {
+  const SceneScore s = venueScore(56, "[-3216, 1243]", R"(materials:
+  pink: [249, 117, 183]
+  green: [105, 195, 84]
+  yellow: [241, 235, 75]
+  blue: [45, 86, 169]
+  ball: [240, 70, 20]
+lighting:
+  white_balance: [0.73, 1.02, 1.66]
+  saturation: 0.83
+  gamma: 1.12
+  exposure: 1.26
+  uneven_ratio: 2.98
+  uneven_direction: -0.50
+  sun_patches:
+    - {center: [-3216, 1243], radii: [600, 500], angle: 0.3, gain: 2.24, softness: 0.25}
+)");
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.ballRecall(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

@@ -34,16 +34,28 @@ bool HypothesisSearch::slotReadsAsMarker(const PatternPose& pose, int slot, int 
   if (seen.share < 1) return false;
   const float bright = seen.rgb[0] + seen.rgb[1] + seen.rgb[2];
   if (bright < kMarkerBrightness * brightness(c)) return false;
-  const double out = kCarpetProbeDistance / RobotPatternGeometry::kSideBlobDistance;
-  const FieldPoint beyond{pose.position.x + out * (p.x - pose.position.x),
-                          pose.position.y + out * (p.y - pose.position.y), 0};
-  const SeenColor carpet = seenDiscColor(in_.frame, camera_, beyond, opt_.probe_radius);
+  const SeenColor carpet = carpetBeyond(pose, slot);
   const ColorVec carpet_color = colorFeature(carpet.rgb[0], carpet.rgb[1], carpet.rgb[2]);
   const bool is_carpet = carpet.share > 0 && colorDistance(carpet_color, in_.colors[kField]) <
                                                  colorDistance(carpet_color, in_.colors[kWhite]);
   if (is_carpet && bright < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2])) return false;
   color = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
   return true;
+}
+
+SeenColor HypothesisSearch::carpetBeyond(const PatternPose& pose, int slot) const {
+  const FieldMm p = slotPosition(pose.position, pose.orientation, slot);
+  const double out = kCarpetProbeDistance / RobotPatternGeometry::kSideBlobDistance;
+  const FieldPoint beyond{pose.position.x + out * (p.x - pose.position.x),
+                          pose.position.y + out * (p.y - pose.position.y), 0};
+  return seenDiscColor(in_.frame, camera_, beyond, opt_.probe_radius);
+}
+
+bool HypothesisSearch::weakPeakIsCarpet(const PatternPose& pose, int slot, int w) const {
+  if (!opt_.probe_missing_sides || !in_.frame.image) return false;
+  const SeenColor carpet = carpetBeyond(pose, slot);
+  return carpet.share > 0 && brightness(w) < kOverCarpet * (carpet.rgb[0] + carpet.rgb[1] + carpet.rgb[2]) &&
+         colorDistance(blobAt(w).color, colorFeature(carpet.rgb[0], carpet.rgb[1], carpet.rgb[2])) < kMinClassRadius;
 }
 
 bool HypothesisSearch::clearlySideColored(const ColorVec& color) const {

@@ -167,9 +167,13 @@ void HypothesisSearch::completeWithWeak(int c, const int* nbr, int k, Hypothesis
     weak_tol.mm = opt_.weak_side_tolerance;
     int n_weak = findWeakSlots(pose, filled, *in_.weak_index, weak_tol, found, error);
     // A weak peak much darker than the center is the robot top's (the dark
-    // rim around a pale dot), not a marker.
+    // rim around a pale dot), one colored as the carpet beyond the rim the
+    // carpet's texture (a sun patch over a ball lit three peaks around it,
+    // a robot of a ball and the carpet); neither is a marker.
     for (int s = 1; s < kPatternSlots; ++s)
-      if (found[s] >= 0 && brightness(in_.n_strong + found[s]) < kTopBrightness * brightness(c)) found[s] = -1, --n_weak;
+      if (found[s] >= 0 && (brightness(in_.n_strong + found[s]) < kTopBrightness * brightness(c) ||
+                            weakPeakIsCarpet(pose, s, in_.n_strong + found[s])))
+        found[s] = -1, --n_weak;
     if (n_weak == 0 || n + n_weak < min_n - marker_ok) return;
     // A diagonal pair fits both diagonals, and a marker of one placement
     // lies near a slot of the other: where the ring shows the robot's

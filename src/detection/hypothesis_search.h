@@ -97,6 +97,15 @@ class HypothesisSearch {
   bool slotReadsAsMarker(const PatternPose& pose, int slot, int c, ColorVec& color) const;
   // Clearly nearer to the green or the pink class than to the other.
   bool clearlySideColored(const ColorVec& color) const;
+  // The carpet just beyond the robot's rim, kCarpetProbeDistance mm from
+  // its center in the direction of `slot`, as the frame shows it.
+  SeenColor carpetBeyond(const PatternPose& pose, int slot) const;
+  // Whether weak peak `w` in `slot` of `pose` is colored as that carpet,
+  // within a color's noise (kMinClassRadius), and not kOverCarpet as
+  // bright: the carpet's texture, which a sun patch lights into peaks, and
+  // no marker (under dark tungsten in video real dots come out as gray as
+  // the carpet, but brighter).
+  bool weakPeakIsCarpet(const PatternPose& pose, int slot, int w) const;
   // Whether every slot of `pose` not in `peaked` (bit s: slot s has a
   // peak) is in full view and shows a marker: each clearly green or pink,
   // or, where all four slots read as markers, the four splitting into two
