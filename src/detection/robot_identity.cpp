@@ -14,9 +14,11 @@ namespace {
 // beside three seen sides: the lines are no neutral where they clip, and
 // under tungsten at saturation 0.4 and gamma 0.6 (lines (232, 242, 213))
 // every read dot lay on pink's side; applied to all, 29 of 69 robots in
-// H.264 at 3 Mbit/s became all pink. Nor for a dot clipped in all three
-// channels: it has no hue left (a pink one at (242, 247, 241) lay on
-// green's side of a white of (218, 226, 226)).
+// H.264 at 3 Mbit/s became all pink. Nor for a dot clipped in two
+// channels or more: its hue is gone or rests on one channel (a pink one at
+// (242, 247, 241) lay on green's side of a white of (218, 226, 226); under
+// a magenta cast, whose lines are low in green, so did pinks clipped in
+// red and blue in a sun patch of 2.5).
 bool pinkSideOfWhite(const ColorVec& dot, const ColorVec& white, const ColorVec& green, const ColorVec& pink) {
   float along = 0;
   for (int k = 0; k < 3; ++k) along += (dot.c[k] - white.c[k]) * (pink.c[k] - green.c[k]);
@@ -37,14 +39,14 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   // light they share, by the same reading.
   ColorVec dot[4];
   bool read[4] = {false, false, false, false};
-  bool hueless[4] = {false, false, false, false};  // clipped in all three channels
+  bool clipped[4] = {false, false, false, false};  // in two channels or more
   int n_read = 0;
   for (int s = 1; s < kPatternSlots; ++s) {
     const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
     const SeenColor seen = seenDiscColor(c.frame, *c.camera, {p.x, p.y, z}, c.opt->probe_radius);
     if (seen.share < c.opt->min_probe_share) continue;
     dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
-    hueless[s - 1] = ClippedColor(seen.rgb).white();
+    clipped[s - 1] = ClippedColor(seen.rgb).saturated();
     read[s - 1] = true;
     ++n_read;
   }
@@ -62,7 +64,7 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     bool agrees = res.separated;
     for (int s = 0; s < 4 && agrees; ++s)
       if (r.seen_sides >> s & 1) agrees = colors[s] == (lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink);
-      else if (c.white && !hueless[s] && __builtin_popcount(r.seen_sides) == 3)
+      else if (c.white && !clipped[s] && __builtin_popcount(r.seen_sides) == 3)
         agrees = pinkSideOfWhite(dot[s], *c.white, green, pink) == (lab[s] == 1);
     if (agrees) {
       for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
