@@ -3,6 +3,8 @@
 // the script wrote it, held to the bar its rule gave.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdio>
 #include <string>
 
 #include "scene_scoring.h"
@@ -13,10 +15,30 @@ namespace {
 
 using namespace dv::test;
 
-// Venue `seed` as the script writes it: its camera, 8 + 8 robots placed by
-// the seed, the ball, then its own materials and lighting (YAML).
-SceneScore venueScore(int seed, const std::string& ball, const std::string& materials_and_lighting) {
-  const std::string n = std::to_string(seed);
+// What the script draws per venue (its YAML keys); the sun patch lies over
+// the ball (600 x 500 mm, angle 0.3, softness 0.25).
+struct Venue {
+  int seed;
+  double ball_x, ball_y;
+  std::array<int, 3> pink, green, yellow, blue, ball;
+  std::array<double, 3> white_balance;
+  double saturation, gamma, exposure, uneven_ratio, uneven_direction, sun_gain;
+};
+
+// The venue as the script writes it, scored at half resolution.
+SceneScore venueScore(const Venue& v) {
+  auto rgb = [](const std::array<int, 3>& c) {
+    return "[" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + "]";
+  };
+  char ball[64], lighting[512];
+  std::snprintf(ball, sizeof ball, "[%.0f, %.0f]", v.ball_x, v.ball_y);
+  std::snprintf(lighting, sizeof lighting,
+                "lighting:\n  white_balance: [%.2f, %.2f, %.2f]\n  saturation: %.2f\n  gamma: %.2f\n"
+                "  exposure: %.2f\n  uneven_ratio: %.2f\n  uneven_direction: %.2f\n  sun_patches:\n"
+                "    - {center: %s, radii: [600, 500], angle: 0.3, gain: %.2f, softness: 0.25}\n",
+                v.white_balance[0], v.white_balance[1], v.white_balance[2], v.saturation, v.gamma, v.exposure,
+                v.uneven_ratio, v.uneven_direction, ball, v.sun_gain);
+  const std::string n = std::to_string(v.seed);
   const std::string yaml = "name: venue_" + n + "\nseed: " + n + R"(
 field: division_b
 cameras:
@@ -29,7 +51,9 @@ antialias: 2
 frames: 1
 bayer: true
 )" + "ball: {position: " + ball + "}\nrandom_robots: {yellow: 8, blue: 8, camera: 0, margin_px: 60, seed: " + n +
-                           "}\n" + materials_and_lighting;
+                           "}\nmaterials:\n  pink: " + rgb(v.pink) + "\n  green: " + rgb(v.green) +
+                           "\n  yellow: " + rgb(v.yellow) + "\n  blue: " + rgb(v.blue) + "\n  ball: " + rgb(v.ball) +
+                           "\n" + lighting;
   SceneSpec s = sceneFromYaml(yaml, "venue_" + n);
   halveResolution(s);
   SceneScore score_;
@@ -43,22 +67,8 @@ bayer: true
 // as the redder, so pink: id 14 for 8. A dot read where no blob was must
 // lie on its label's side of the lines' white (robot_identity.cpp).
 TEST(SceneRandomVenue, AGreenDotLitTowardWhiteStaysGreen) {
-  const SceneScore s = venueScore(376, "[-3714, -242]", R"(materials:
-  pink: [255, 140, 190]
-  green: [111, 197, 79]
-  yellow: [243, 217, 56]
-  blue: [47, 90, 173]
-  ball: [244, 83, 20]
-lighting:
-  white_balance: [0.99, 1.09, 1.34]
-  saturation: 0.82
-  gamma: 0.76
-  exposure: 0.98
-  uneven_ratio: 1.51
-  uneven_direction: -2.00
-  sun_patches:
-    - {center: [-3714, -242], radii: [600, 500], angle: 0.3, gain: 1.90, softness: 0.25}
-)");
+  const SceneScore s = venueScore({376, -3714, -242, {255, 140, 190}, {111, 197, 79}, {243, 217, 56}, {47, 90, 173},
+                                   {244, 83, 20}, {0.99, 1.09, 1.34}, 0.82, 0.76, 0.98, 1.51, -2.00, 1.90});
   EXPECT_EQ(s.precision(), 1.0);
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
@@ -68,22 +78,8 @@ lighting:
 // left: by its side of the lines' white it read green (id 8 for 2). Such
 // a dot keeps the label the split gives it, the redder of the robot's dots.
 TEST(SceneRandomVenue, ADotClippedWhiteKeepsItsSplit) {
-  const SceneScore s = venueScore(157, "[-2607, -575]", R"(materials:
-  pink: [249, 118, 183]
-  green: [137, 206, 60]
-  yellow: [241, 232, 71]
-  blue: [42, 80, 164]
-  ball: [242, 76, 20]
-lighting:
-  white_balance: [1.05, 0.89, 1.27]
-  saturation: 0.41
-  gamma: 0.95
-  exposure: 0.94
-  uneven_ratio: 2.63
-  uneven_direction: -2.57
-  sun_patches:
-    - {center: [-2607, -575], radii: [600, 500], angle: 0.3, gain: 2.05, softness: 0.25}
-)");
+  const SceneScore s = venueScore({157, -2607, -575, {249, 118, 183}, {137, 206, 60}, {241, 232, 71}, {42, 80, 164},
+                                   {242, 76, 20}, {1.05, 0.89, 1.27}, 0.41, 0.95, 0.94, 2.63, -2.57, 2.05});
   EXPECT_EQ(s.precision(), 1.0);
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
@@ -94,22 +90,8 @@ lighting:
 // colored as the carpet just beyond the robot's rim, and no brighter than
 // a marker over it, is no marker (hypothesis_search.cpp).
 TEST(SceneRandomVenue, ALitBallAmongCarpetPeaksIsNoRobot) {
-  const SceneScore s = venueScore(56, "[-3216, 1243]", R"(materials:
-  pink: [249, 117, 183]
-  green: [105, 195, 84]
-  yellow: [241, 235, 75]
-  blue: [45, 86, 169]
-  ball: [240, 70, 20]
-lighting:
-  white_balance: [0.73, 1.02, 1.66]
-  saturation: 0.83
-  gamma: 1.12
-  exposure: 1.26
-  uneven_ratio: 2.98
-  uneven_direction: -0.50
-  sun_patches:
-    - {center: [-3216, 1243], radii: [600, 500], angle: 0.3, gain: 2.24, softness: 0.25}
-)");
+  const SceneScore s = venueScore({56, -3216, 1243, {249, 117, 183}, {105, 195, 84}, {241, 235, 75}, {45, 86, 169},
+                                   {240, 70, 20}, {0.73, 1.02, 1.66}, 0.83, 1.12, 1.26, 2.98, -0.50, 2.24});
   EXPECT_EQ(s.precision(), 1.0);
   EXPECT_EQ(s.ballRecall(), 1.0);
 }

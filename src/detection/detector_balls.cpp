@@ -463,14 +463,15 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
                              ? b.has_unclipped && (test.isBall(b.unclipped_rgb) ||
                                                    test.isRim(b.unclipped_rgb, have_around ? &around : nullptr))
                              : test.isBall(b.rgb);
-    if (!colored || ballColorBeyondRim(frame_view, test, px, r)) continue;
     // On a marking, a thin line's demosaiced false color can lie in a
     // marker's reach with the carpet beside it: there the blob must show a
-    // whole ball's round silhouette. A clipped blob's own color says too
-    // little for one; it was judged by its rim.
+    // whole ball's round silhouette (which has no color beyond its rim
+    // either). A clipped blob's own color says too little for one; it was
+    // judged by its rim.
+    const bool round_needed = !ClippedColor(b.rgb).saturated() && onMarking(b.at_ball);
     ImagePx whole;
-    if (!ClippedColor(b.rgb).saturated() && onMarking(b.at_ball) &&
-        !ballSilhouetteCenter(frame_view, test, px, r, whole))
+    if (!colored || (round_needed ? !ballSilhouetteCenter(frame_view, test, px, r, whole)
+                                  : ballColorBeyondRim(frame_view, test, px, r)))
       continue;
     const double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < kMinCarpetAroundBall) continue;
