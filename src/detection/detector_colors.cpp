@@ -33,7 +33,7 @@ TwoMeansResult Detector::Impl::splitSides(const ColorVec ext[2]) {
   return res;
 }
 
-TwoMeansResult Detector::Impl::clusterCenters() {
+TwoMeansResult Detector::Impl::clusterCenters(bool from_unclipped) {
   // The team split is weighed against the side colors this frame shows,
   // not the classes: in a first frame those are still the references,
   // and a washed-out frame's markers all lie far from them (lemon centers
@@ -44,13 +44,51 @@ TwoMeansResult Detector::Impl::clusterCenters() {
   const TwoMeansResult sides = splitSides(teams);
   const ColorVec ext[2] = {sides.count[0] > 0 ? sides.mean[0] : classes[kGreen].color,
                            sides.count[1] > 0 ? sides.mean[1] : classes[kPink].color};
+  auto learnsSplit = [&](const Hypothesis& r, bool any_free) {
+    return !from_unclipped || !any_free || !centerSeen(blobs[r.blob[0]]).saturated();
+  };
+  bool any_free = false;
+  for (const auto& r : robots) any_free = any_free || learnsSplit(r, true);
   samples.clear();
-  for (const auto& r : robots) samples.push_back(centerColor(blobs[r.blob[0]]));
+  for (const auto& r : robots)
+    if (learnsSplit(r, any_free)) samples.push_back(centerColor(blobs[r.blob[0]]));
   labels.resize(samples.size());
-  TwoMeansResult r = twoMeans(samples.data(), static_cast<int>(samples.size()), teams, ext, 2, labels.data());
-  orderByRatio(r, 2, 1);  // blue over green: blue's far above yellow's
-  return r;
+  const int n = static_cast<int>(samples.size());
+  TwoMeansResult res = twoMeans(samples.data(), n, teams, ext, 2, labels.data());
+  orderByRatio(res, 2, 1);  // blue over green: blue's far above yellow's
+  auto labelCenters = [&] {
+    center_labels.clear();
+    size_t j = 0;
+    for (const auto& r : robots) {
+      const ClippedColor c = centerSeen(blobs[r.blob[0]]);
+      center_labels.push_back(learnsSplit(r, any_free) ? labels[j++]
+                              : c.distance(res.mean[0]) <= c.distance(res.mean[1]) ? 0 : 1);
+    }
+  };
+  labelCenters();
+  if (res.separated && splitByClipping(res)) {
+    res = oneClass(samples.data(), n, teams, -1, labels.data());
+    orderByRatio(res, 2, 1);
+    labelCenters();
+  }
+  return res;
 }
+
+bool Detector::Impl::splitByClipping(const TwoMeansResult& r) const {
+  for (int k = 0; k < 2; ++k) {
+    const float reach = classReach(clusterSpread(r, 1 - k));
+    bool explained = true;
+    for (size_t i = 0; i < robots.size() && explained; ++i)
+      if (center_labels[i] == k) {
+        const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
+        explained = c.clipped() && c.distance(r.mean[1 - k]) <= reach;
+      }
+    if (explained) return true;
+  }
+  return false;
+}
+
+ClippedColor Detector::Impl::centerSeen(const FrameBlob& b) { return ClippedColor(readByRim(b) ? b.unclipped_rgb : b.rgb); }
 
 int Detector::Impl::dropImplausibleCenters() {
   const int nr = static_cast<int>(robots.size());
@@ -62,9 +100,8 @@ int Detector::Impl::dropImplausibleCenters() {
     // judged by the colors it may have been, as the field and the lines
     // are; one clipped in all three by its rim where it has one (centerColor:
     // a line crossing's is line and carpet), else as seen.
-    const FrameBlob& center = blobs[robots[i].blob[0]];
-    const ClippedColor c(readByRim(center) ? center.unclipped_rgb : center.rgb);
-    const float d_team = c.distance(res.mean[labels[i]]);
+    const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
+    const float d_team = c.distance(res.mean[center_labels[i]]);
     const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
     if (d_bg < d_team) {
       for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
@@ -92,24 +129,26 @@ void Detector::Impl::dropCentersAloneAtCrossings() {
 }
 
 void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
-  const float fp = static_cast<float>(opt.retention_force);
-  const float fr = static_cast<float>(opt.reference_force);
-  const int cls[2] = {a, b};
-  // The spread of each class's samples (`samples` and `labels` are
-  // twoMeans's): how far a color may lie from the class and still be it.
-  double sum[2] = {0, 0};
-  for (size_t i = 0; i < samples.size() && i < labels.size(); ++i) {
-    const float d = colorDistance(samples[i], r.mean[labels[i]]);
-    sum[labels[i]] += d * d;
-  }
-  for (int k = 0; k < 2; ++k) {
-    frame_spread[cls[k]] = r.count[k] > 1 ? static_cast<float>(std::sqrt(sum[k] / r.count[k])) : 0.f;
-    if (r.count[k] > 0) {
-      frame_seen[cls[k]] = true;
-      frame_color[cls[k]] = r.mean[k];
-      classes[cls[k]].update(r.mean[k], fp, fr);
+  learnClassFrom(a, r, 0);
+  learnClassFrom(b, r, 1);
+}
+
+float Detector::Impl::clusterSpread(const TwoMeansResult& r, int label) const {
+  double sum = 0;
+  for (size_t i = 0; i < samples.size() && i < labels.size(); ++i)
+    if (labels[i] == label) {
+      const float d = colorDistance(samples[i], r.mean[label]);
+      sum += d * d;
     }
-  }
+  return r.count[label] > 1 ? static_cast<float>(std::sqrt(sum / r.count[label])) : 0.f;
+}
+
+void Detector::Impl::learnClassFrom(int cls, const TwoMeansResult& r, int label) {
+  frame_spread[cls] = clusterSpread(r, label);
+  if (r.count[label] == 0) return;
+  frame_seen[cls] = true;
+  frame_color[cls] = r.mean[label];
+  classes[cls].update(r.mean[label], static_cast<float>(opt.retention_force), static_cast<float>(opt.reference_force));
 }
 
 void Detector::Impl::learnFrameColors() {
@@ -123,11 +162,12 @@ void Detector::Impl::learnFrameColors() {
     const auto res = clusterCenters();
     health.center_blobs = nr;
     health.teams_separated = res.separated;
-    for (int i = 0; i < nr; ++i) robots[i].team = labels[i] == 0 ? Team::Yellow : Team::Blue;
+    for (int i = 0; i < nr; ++i) robots[i].team = center_labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
     float sum[2] = {0, 0};
-    for (int i = 0; i < nr; ++i) sum[labels[i]] += blobs[robots[i].blob[0]].brightness();
-    for (int k = 0; k < 2; ++k) team_brightness[k] = res.count[k] > 0 ? sum[k] / res.count[k] : 0.f;
+    int count[2] = {0, 0};
+    for (int i = 0; i < nr; ++i) sum[center_labels[i]] += blobs[robots[i].blob[0]].brightness(), ++count[center_labels[i]];
+    for (int k = 0; k < 2; ++k) team_brightness[k] = count[k] > 0 ? sum[k] / count[k] : 0.f;
     // The reddest yellow center under the lines' white: a color redder
     // than every one of them is no yellow the frame shows (explainedByNone).
     // A center clipped in a channel shows a color it does not have (a
@@ -137,7 +177,7 @@ void Detector::Impl::learnFrameColors() {
     if (neutral.valid)
       for (int i = 0; i < nr; ++i) {
         const FrameBlob& c = blobs[robots[i].blob[0]];
-        if (labels[i] == 0 && !ClippedColor(c.rgb).clipped())
+        if (center_labels[i] == 0 && !ClippedColor(c.rgb).clipped())
           yellow_hue_min = std::min(yellow_hue_min, colorHue(c.rgb, neutral.rgb));
       }
   }

@@ -160,6 +160,16 @@ struct Detector::Impl {
   // center appended to `blobs`.
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
+  int addRobotsAroundUnpeakedCenters();
+  // Where the first search found one team only, the other may be there
+  // with centers that made no blob and that no class places (sky blue
+  // under a warm cast at saturation 0.5 reads as gray as the lines): the
+  // full patterns around such centers are probed, and where their centers
+  // and the seen team's split into two clusters exactly so (eq. 5.24),
+  // the probed one on the unseen team's side of the lines' white
+  // (orderByRatio), it is this frame's color of the unseen team.
+  void learnUnseenTeam();
+  bool probing_unseen_team = false;
   // Side blobs a (slot sa) and b (slot sb) with the free blobs partner[0, k)
   // in the other slots; the pattern `h` (slots 1.. filled; the center's
   // color read into center_rgb) where it passes robotsAroundUnpeakedCenters'
@@ -180,7 +190,24 @@ struct Detector::Impl {
   // Center blob colors of the robot hypotheses in two classes, yellow vs
   // blue, with this frame's green and pink (splitSides) as the external
   // colors (eq. 5.24); the labels are left in `labels`.
-  TwoMeansResult clusterCenters();
+  // Each robot's cluster (0 yellow, 1 blue) is left in `center_labels`;
+  // `samples` and `labels` hold the centers the split was learned from.
+  // A center clipped in two channels shows a hue it need not have (an
+  // amber center clipped in red and green reads as pale as the lines):
+  // `from_unclipped`, the split is learned from the other centers where
+  // there are any, and each clipped one joins the mean nearer to the
+  // colors it may have been (ClippedColor).
+  TwoMeansResult clusterCenters(bool from_unclipped = false);
+  std::vector<uint8_t> center_labels;
+  // A center's color as ClippedColor judges it (centerColor's choice).
+  static ClippedColor centerSeen(const FrameBlob& b);
+  // Whether one cluster of a split of the centers is the other's color
+  // clipped: each of its centers clipped, and within the other's reach
+  // (classReach) of a color that clips to it (ClippedColor). An amber team
+  // clipped in red and green in the brighter half reads as pale as the
+  // lines and splits from its unclipped half as the bluer cluster; a
+  // clipped sky blue is no clipped yellow.
+  bool splitByClipping(const TwoMeansResult& r) const;
   // The robots' side blobs (weak peaks aside: too noisy to learn from) in
   // two classes, green vs pink, the team colors `ext` as external; the
   // samples and labels are left in `samples` and `labels`.
@@ -191,7 +218,13 @@ struct Detector::Impl {
   // many were dropped.
   int dropImplausibleCenters();
 
+  // Classes a and b from twoMeans's clusters 0 and 1 (over `samples`,
+  // `labels`): this frame's color, its spread, and the class it retains.
   void learnClass(int a, int b, const TwoMeansResult& r);
+  void learnClassFrom(int cls, const TwoMeansResult& r, int label);
+  // The rms distance of cluster `label`'s samples to its mean: how far a
+  // color may lie from the class and still be it (classReach).
+  float clusterSpread(const TwoMeansResult& r, int label) const;
   // Drops the robots that are a center alone (its dots all read from the
   // frame) where two markings cross: the crossing's four arms are what the
   // frame shows at the slots.

@@ -52,6 +52,40 @@ bool Detector::Impl::teamOfFullPattern(const ClippedColor& seen, Team* team) con
 
 int Detector::Impl::robotsAroundUnpeakedCenters() {
   if (!frame_view.image || !opt.probe_missing_sides) return 0;
+  if (frame_seen[kYellow] != frame_seen[kBlue]) learnUnseenTeam();
+  return addRobotsAroundUnpeakedCenters();
+}
+
+void Detector::Impl::learnUnseenTeam() {
+  const int seen = frame_seen[kYellow] ? kYellow : kBlue, unseen = kYellow + kBlue - seen;
+  const int seen_label = seen == kYellow ? 0 : 1;
+  const size_t n_robots = robots.size(), n_blobs = blobs.size();
+  probing_unseen_team = true;
+  addRobotsAroundUnpeakedCenters();
+  probing_unseen_team = false;
+  // The centers split in two (clusterCenters), the probed ones apart from
+  // the seen team's and on the unseen team's side of the lines' white.
+  const bool probed = robots.size() > n_robots && neutral.valid;
+  TwoMeansResult r;
+  if (probed) r = clusterCenters(true);
+  // The probed centers all in one cluster, and most of the seen team's in
+  // the other (a first-pass robot of two dots may be anything).
+  bool whole = probed && r.separated;
+  int seen_split[2] = {0, 0};
+  for (size_t i = 0; i < n_robots && whole; ++i) ++seen_split[center_labels[i]];
+  whole = whole && seen_split[seen_label] > seen_split[1 - seen_label];
+  for (size_t i = n_robots; i < robots.size() && whole; ++i) whole = center_labels[i] != seen_label;
+  for (size_t i = n_robots; i < robots.size(); ++i)
+    for (int b = 1; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
+  robots.resize(n_robots);
+  blobs.resize(n_blobs);
+  if (!whole) return;
+  auto blueOverGreen = [](const float* c) { return c[2] / std::max(c[1], 1e-3f); };
+  if ((blueOverGreen(r.mean[1 - seen_label].c) > blueOverGreen(neutral.rgb)) != (unseen == kBlue)) return;
+  learnClassFrom(unseen, r, 1 - seen_label);
+}
+
+int Detector::Impl::addRobotsAroundUnpeakedCenters() {
   auto free = [&](int i) {
     const FrameBlob& b = blobs[i];
     return b.valid && !b.streak && !b.weak && b.robot < 0;
@@ -145,7 +179,11 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
   for (int i = 1; i < h.n; ++i) sides += blobs[h.blob[i]].brightness();
   if (seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * sides / (h.n - 1)) return false;
   const ClippedColor center(seen.rgb);
-  if (!(h.n == kPatternSlots ? teamOfFullPattern(center, &h.team) : teamColored(center, &h.team))) return false;
+  bool placed = h.n == kPatternSlots ? teamOfFullPattern(center, &h.team) : teamColored(center, &h.team);
+  // learnUnseenTeam probes for the full patterns whose unclipped center
+  // neither team's class places.
+  if (probing_unseen_team) placed = !placed && h.n == kPatternSlots && !center.clipped();
+  if (!placed) return false;
   for (int i = 0; i < 3; ++i) center_rgb[i] = seen.rgb[i];
   h.rank = h.pose.score * (h.n == kPatternSlots ? 1.0 : kThreeSidePenalty) *
            kUnpeakedCenterRankFactor;
