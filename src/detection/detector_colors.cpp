@@ -78,12 +78,14 @@ bool Detector::Impl::splitByClipping(const TwoMeansResult& r) const {
   for (int k = 0; k < 2; ++k) {
     const float reach = classReach(clusterSpread(r, 1 - k));
     bool explained = true;
-    for (size_t i = 0; i < robots.size() && explained; ++i)
-      if (center_labels[i] == k) {
-        const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
-        explained = c.clipped() && c.distance(r.mean[1 - k]) <= reach;
-      }
-    if (explained) return true;
+    int clipped = 0, unclipped = 0;
+    for (size_t i = 0; i < robots.size() && explained; ++i) {
+      if (center_labels[i] != k) continue;
+      const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
+      ++(c.clipped() ? clipped : unclipped);
+      explained = !c.clipped() || c.distance(r.mean[1 - k]) <= reach;
+    }
+    if (explained && clipped > unclipped) return true;
   }
   return false;
 }

@@ -202,11 +202,12 @@ struct Detector::Impl {
   // A center's color as ClippedColor judges it (centerColor's choice).
   static ClippedColor centerSeen(const FrameBlob& b);
   // Whether one cluster of a split of the centers is the other's color
-  // clipped: each of its centers clipped, and within the other's reach
+  // clipped: most of its centers clipped, each within the other's reach
   // (classReach) of a color that clips to it (ClippedColor). An amber team
   // clipped in red and green in the brighter half reads as pale as the
   // lines and splits from its unclipped half as the bluer cluster; a
-  // clipped sky blue is no clipped yellow.
+  // clipped sky blue is no clipped yellow. (A stray unclipped center may
+  // join the clipped ones: a first-pass robot of its center alone did.)
   bool splitByClipping(const TwoMeansResult& r) const;
   // The robots' side blobs (weak peaks aside: too noisy to learn from) in
   // two classes, green vs pink, the team colors `ext` as external; the
