@@ -128,5 +128,20 @@ TEST(SceneRandomVenue, AnAmberTeamClippedInTheLightIsOneTeam) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Extreme venue #299: at saturation 0.41 and gamma 1.49 a light orange ball
+// reads (218, 156, 96), nearest to the amber centers (232, 181, 95), and
+// is judged as a ball of the yellow class's color, round and alone. The
+// centers clipped in red and green ((250, 252, 194) in the brighter half)
+// had widened that class's reach over the carpet beyond the ball's rim: no
+// ball. A clipped center's distance to its team is now the nearest color
+// that clips to it (learnFrameColors).
+TEST(SceneRandomVenue, ClippedCentersWidenNoTeamOverTheCarpet) {
+  const SceneScore s = venueScore({299, -1483, -770, {231, 44, 161}, {79, 186, 104}, {246, 193, 30}, {87, 164, 235},
+                                   {254, 116, 20}, {1.27, 1.09, 1.00}, 0.41, 1.49, 1.26, 2.36, 0.58, 0});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

@@ -166,9 +166,18 @@ void Detector::Impl::learnFrameColors() {
     health.teams_separated = res.separated;
     for (int i = 0; i < nr; ++i) robots[i].team = center_labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
-    float sum[2] = {0, 0};
+    // A clipped center lies from its team's color as far as the nearest
+    // color that clips to it (the clipped yellows' pale chroma widened the
+    // class's reach over the carpet beside a ball of the team's color).
+    float sum[2] = {0, 0}, sq[2] = {0, 0};
     int count[2] = {0, 0};
-    for (int i = 0; i < nr; ++i) sum[center_labels[i]] += blobs[robots[i].blob[0]].brightness(), ++count[center_labels[i]];
+    for (int i = 0; i < nr; ++i) {
+      const int k = center_labels[i];
+      const float d = centerSeen(blobs[robots[i].blob[0]]).distance(res.mean[k]);
+      sum[k] += blobs[robots[i].blob[0]].brightness(), sq[k] += d * d, ++count[k];
+    }
+    for (int k = 0; k < 2; ++k)
+      if (res.count[k] > 0) frame_spread[k == 0 ? kYellow : kBlue] = count[k] > 1 ? std::sqrt(sq[k] / count[k]) : 0.f;
     for (int k = 0; k < 2; ++k) team_brightness[k] = count[k] > 0 ? sum[k] / count[k] : 0.f;
     // The reddest yellow center under the lines' white: a color redder
     // than every one of them is no yellow the frame shows (explainedByNone).
