@@ -143,5 +143,18 @@ TEST(SceneRandomVenue, ClippedCentersWidenNoTeamOverTheCarpet) {
   EXPECT_EQ(s.precision(), 1.0);
 }
 
+// Moderate venue #475: a sun patch of 2.09 under a cold cast clips a lemon
+// center to white (251, 254, 252) among four teal and pink dots. Its rim,
+// the robot's dark top mixed with the light, read (201, 223, 207), nearer
+// to the lines than to yellow: the robot was dropped as a line-colored
+// center. A center with no hue left is its four side blobs' center.
+TEST(SceneRandomVenue, ACenterClippedWhiteIsItsFourDotsCenter) {
+  const SceneScore s = venueScore({475, -2677, -1462, {247, 107, 180}, {30, 170, 140}, {241, 231, 71}, {58, 110, 189},
+                                   {241, 75, 20}, {0.72, 0.83, 1.67}, 1.12, 1.16, 0.95, 2.19, 2.83, 2.09});
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

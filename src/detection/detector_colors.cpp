@@ -105,7 +105,14 @@ int Detector::Impl::dropImplausibleCenters() {
     const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
     const float d_team = c.distance(res.mean[center_labels[i]]);
     const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
-    if (d_bg < d_team) {
+    // One with no hue left (clipped white in a sun patch) is its four side
+    // blobs' center, where no markings cross (their false colors make
+    // patterns): its rim, the robot's dark top mixed with the light,
+    // reads as gray as a line's.
+    const FrameBlob& center = blobs[robots[i].blob[0]];
+    const bool by_pattern =
+        ClippedColor(center.rgb).white() && robots[i].n == kPatternSlots && !atCrossing(center.at_ball);
+    if (!by_pattern && d_bg < d_team) {
       for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
       blobs[robots[i].blob[0]].implausible_center = true;
       continue;
