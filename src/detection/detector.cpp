@@ -18,6 +18,7 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   border_balls.reserve(64);
   samples.reserve(512);
   labels.reserve(512);
+  sample_rgb.reserve(512);
   center_labels.reserve(512);
   score_buf.reserve(512);
   reset();

@@ -17,15 +17,24 @@ bool Detector::Impl::readByRim(const FrameBlob& b) {
   return b.has_unclipped && std::min({b.rgb[0], b.rgb[1], b.rgb[2]}) >= kClipLevel;
 }
 
+const float* Detector::Impl::centerRgb(const FrameBlob& b) { return readByRim(b) ? b.unclipped_rgb : b.rgb; }
+
 ColorVec Detector::Impl::centerColor(const FrameBlob& b) {
-  return readByRim(b) ? colorFeature(b.unclipped_rgb[0], b.unclipped_rgb[1], b.unclipped_rgb[2]) : b.color;
+  const float* c = centerRgb(b);
+  return colorFeature(c[0], c[1], c[2]);
+}
+
+void Detector::Impl::addSample(const float rgb[3]) {
+  samples.push_back(colorFeature(rgb[0], rgb[1], rgb[2]));
+  sample_rgb.push_back({rgb[0], rgb[1], rgb[2]});
 }
 
 TwoMeansResult Detector::Impl::splitSides(const ColorVec ext[2]) {
   samples.clear();
+  sample_rgb.clear();
   for (const auto& r : robots)
     for (int i = 1; i < r.n; ++i)
-      if (!blobs[r.blob[i]].weak) samples.push_back(blobs[r.blob[i]].color);
+      if (!blobs[r.blob[i]].weak) addSample(blobs[r.blob[i]].rgb);
   labels.resize(samples.size());
   const ColorVec prior[2] = {classes[kGreen].color, classes[kPink].color};
   auto res = twoMeans(samples.data(), static_cast<int>(samples.size()), prior, ext, 2, labels.data());
@@ -50,8 +59,9 @@ TwoMeansResult Detector::Impl::clusterCenters(bool from_unclipped) {
   bool any_free = false;
   for (const auto& r : robots) any_free = any_free || learnsSplit(r, true);
   samples.clear();
+  sample_rgb.clear();
   for (const auto& r : robots)
-    if (learnsSplit(r, any_free)) samples.push_back(centerColor(blobs[r.blob[0]]));
+    if (learnsSplit(r, any_free)) addSample(centerRgb(blobs[r.blob[0]]));
   labels.resize(samples.size());
   const int n = static_cast<int>(samples.size());
   TwoMeansResult res = twoMeans(samples.data(), n, teams, ext, 2, labels.data());
@@ -90,7 +100,7 @@ bool Detector::Impl::splitByClipping(const TwoMeansResult& r) const {
   return false;
 }
 
-ClippedColor Detector::Impl::centerSeen(const FrameBlob& b) { return ClippedColor(readByRim(b) ? b.unclipped_rgb : b.rgb); }
+ClippedColor Detector::Impl::centerSeen(const FrameBlob& b) { return ClippedColor(centerRgb(b)); }
 
 int Detector::Impl::dropImplausibleCenters() {
   const int nr = static_cast<int>(robots.size());
@@ -146,7 +156,7 @@ float Detector::Impl::clusterSpread(const TwoMeansResult& r, int label) const {
   double sum = 0;
   for (size_t i = 0; i < samples.size() && i < labels.size(); ++i)
     if (labels[i] == label) {
-      const float d = colorDistance(samples[i], r.mean[label]);
+      const float d = ClippedColor(sample_rgb[i].data()).distance(r.mean[label]);
       sum += d * d;
     }
   return r.count[label] > 1 ? static_cast<float>(std::sqrt(sum / r.count[label])) : 0.f;
@@ -173,18 +183,9 @@ void Detector::Impl::learnFrameColors() {
     health.teams_separated = res.separated;
     for (int i = 0; i < nr; ++i) robots[i].team = center_labels[i] == 0 ? Team::Yellow : Team::Blue;
     learnClass(kYellow, kBlue, res);
-    // A clipped center lies from its team's color as far as the nearest
-    // color that clips to it (the clipped yellows' pale chroma widened the
-    // class's reach over the carpet beside a ball of the team's color).
-    float sum[2] = {0, 0}, sq[2] = {0, 0};
+    float sum[2] = {0, 0};
     int count[2] = {0, 0};
-    for (int i = 0; i < nr; ++i) {
-      const int k = center_labels[i];
-      const float d = centerSeen(blobs[robots[i].blob[0]]).distance(res.mean[k]);
-      sum[k] += blobs[robots[i].blob[0]].brightness(), sq[k] += d * d, ++count[k];
-    }
-    for (int k = 0; k < 2; ++k)
-      if (res.count[k] > 0) frame_spread[k == 0 ? kYellow : kBlue] = count[k] > 1 ? std::sqrt(sq[k] / count[k]) : 0.f;
+    for (int i = 0; i < nr; ++i) sum[center_labels[i]] += blobs[robots[i].blob[0]].brightness(), ++count[center_labels[i]];
     for (int k = 0; k < 2; ++k) team_brightness[k] = count[k] > 0 ? sum[k] / count[k] : 0.f;
     // The reddest yellow center under the lines' white: a color redder
     // than every one of them is no yellow the frame shows (explainedByNone).
@@ -249,7 +250,7 @@ void Detector::Impl::pinkFromUnseenSlots() {
       if (seen.share < opt.min_probe_share ||
           seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * blobs[r.blob[0]].brightness())
         continue;
-      samples.push_back(colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]));
+      addSample(seen.rgb);
     }
   }
   if (samples.size() == n_blobs) return;

@@ -78,6 +78,12 @@ struct Detector::Impl {
   std::vector<FieldMm> robot_positions;  // of the accepted robots, for the ball tracker
   std::vector<BallCandidate> ball_cands;
   std::vector<ColorVec> samples;
+  // Each sample's RGB, which clusterSpread judges (ClippedColor: a clipped
+  // sample lies from its class as far as the nearest color that clips to
+  // it; the pale chroma of centers clipped in red and green widened the
+  // yellow class's reach over the carpet beside a ball of its color).
+  std::vector<std::array<float, 3>> sample_rgb;
+  void addSample(const float rgb[3]);
   std::vector<uint8_t> labels;
   std::vector<float> score_buf;
   double last_t = 0;
@@ -113,6 +119,7 @@ struct Detector::Impl {
   // Fills f's unclipped color where blob b (on plane z0) clips in two channels.
   void readUnclipped(const Blob& b, double z0, FrameBlob& f) const;
   static bool readByRim(const FrameBlob& b);
+  static const float* centerRgb(const FrameBlob& b);
   static ColorVec centerColor(const FrameBlob& b);
 
   // ------------------------------------------- position based hypotheses
