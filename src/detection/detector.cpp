@@ -131,6 +131,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   }
   learnFrameColors();
   searchAgainWithFrameColors();
+  learnUnseenTeam();
   robotsAroundUnpeakedCenters();
   dropCentersAloneAtCrossings();
   identifyRobots();

@@ -19,11 +19,6 @@ bool Detector::Impl::readByRim(const FrameBlob& b) {
 
 const float* Detector::Impl::centerRgb(const FrameBlob& b) { return readByRim(b) ? b.unclipped_rgb : b.rgb; }
 
-ColorVec Detector::Impl::centerColor(const FrameBlob& b) {
-  const float* c = centerRgb(b);
-  return colorFeature(c[0], c[1], c[2]);
-}
-
 void Detector::Impl::addSample(const float rgb[3]) {
   samples.push_back(colorFeature(rgb[0], rgb[1], rgb[2]));
   sample_rgb.push_back({rgb[0], rgb[1], rgb[2]});
@@ -110,7 +105,7 @@ int Detector::Impl::dropImplausibleCenters() {
   for (int i = 0; i < nr; ++i) {
     // A center clipped in two channels (a yellow top in a sun patch) is
     // judged by the colors it may have been, as the field and the lines
-    // are; one clipped in all three by its rim where it has one (centerColor:
+    // are; one clipped in all three by its rim where it has one (centerRgb:
     // a line crossing's is line and carpet), else as seen.
     const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
     const float d_team = c.distance(res.mean[center_labels[i]]);

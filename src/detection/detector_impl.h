@@ -119,8 +119,9 @@ struct Detector::Impl {
   // Fills f's unclipped color where blob b (on plane z0) clips in two channels.
   void readUnclipped(const Blob& b, double z0, FrameBlob& f) const;
   static bool readByRim(const FrameBlob& b);
+  // A center's color: clipped in all three channels, its rim's where it
+  // has one (readByRim), else its own.
   static const float* centerRgb(const FrameBlob& b);
-  static ColorVec centerColor(const FrameBlob& b);
 
   // ------------------------------------------- position based hypotheses
   HypothesisSearch search;
@@ -167,14 +168,16 @@ struct Detector::Impl {
   // center appended to `blobs`.
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
-  int addRobotsAroundUnpeakedCenters();
-  // Where the first search found one team only, the other may be there
-  // with centers that made no blob and that no class places (sky blue
-  // under a warm cast at saturation 0.5 reads as gray as the lines): the
-  // full patterns around such centers are probed, and where their centers
-  // and the seen team's split into two clusters exactly so (eq. 5.24),
-  // the probed one on the unseen team's side of the lines' white
-  // (orderByRatio), it is this frame's color of the unseen team.
+  // Where the searches found one team only, the other may be there with
+  // centers that made no blob and that no class places (sky blue under a
+  // warm cast at saturation 0.5 reads as gray as the lines). The full
+  // patterns around such unclipped centers are probed (probing_unseen_team:
+  // robotsAroundUnpeakedCenters takes them without a team, and they are
+  // undone after). Where the centers split in two (clusterCenters from the
+  // unclipped ones), the probed ones all in one cluster, most of the seen
+  // team's in the other, and the probed cluster on the unseen team's side
+  // of the lines' white (as orderByRatio), that cluster is this frame's
+  // color of the unseen team.
   void learnUnseenTeam();
   bool probing_unseen_team = false;
   // Side blobs a (slot sa) and b (slot sb) with the free blobs partner[0, k)
@@ -196,17 +199,16 @@ struct Detector::Impl {
   void orderByRatio(TwoMeansResult& r, int num, int den);
   // Center blob colors of the robot hypotheses in two classes, yellow vs
   // blue, with this frame's green and pink (splitSides) as the external
-  // colors (eq. 5.24); the labels are left in `labels`.
-  // Each robot's cluster (0 yellow, 1 blue) is left in `center_labels`;
-  // `samples` and `labels` hold the centers the split was learned from.
-  // A center clipped in two channels shows a hue it need not have (an
-  // amber center clipped in red and green reads as pale as the lines):
-  // `from_unclipped`, the split is learned from the other centers where
-  // there are any, and each clipped one joins the mean nearer to the
+  // colors (eq. 5.24). Each robot's cluster (0 yellow, 1 blue) is left in
+  // `center_labels`; `samples` and `labels` hold the centers the split was
+  // learned from. A center clipped in two channels shows a hue it need not
+  // have (an amber center clipped in red and green reads as pale as the
+  // lines): `from_unclipped`, the split is learned from the other centers
+  // where there are any, and each clipped one joins the mean nearer to the
   // colors it may have been (ClippedColor).
   TwoMeansResult clusterCenters(bool from_unclipped = false);
   std::vector<uint8_t> center_labels;
-  // A center's color as ClippedColor judges it (centerColor's choice).
+  // centerRgb as ClippedColor judges it.
   static ClippedColor centerSeen(const FrameBlob& b);
   // Whether one cluster of a split of the centers is the other's color
   // clipped: most of its centers clipped, each within the other's reach

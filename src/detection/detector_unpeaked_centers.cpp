@@ -50,26 +50,19 @@ bool Detector::Impl::teamOfFullPattern(const ClippedColor& seen, Team* team) con
   return true;
 }
 
-int Detector::Impl::robotsAroundUnpeakedCenters() {
-  if (!frame_view.image || !opt.probe_missing_sides) return 0;
-  if (frame_seen[kYellow] != frame_seen[kBlue]) learnUnseenTeam();
-  return addRobotsAroundUnpeakedCenters();
-}
-
 void Detector::Impl::learnUnseenTeam() {
+  if (frame_seen[kYellow] == frame_seen[kBlue]) return;
   const int seen = frame_seen[kYellow] ? kYellow : kBlue, unseen = kYellow + kBlue - seen;
   const int seen_label = seen == kYellow ? 0 : 1;
   const size_t n_robots = robots.size(), n_blobs = blobs.size();
   probing_unseen_team = true;
-  addRobotsAroundUnpeakedCenters();
+  robotsAroundUnpeakedCenters();
   probing_unseen_team = false;
-  // The centers split in two (clusterCenters), the probed ones apart from
-  // the seen team's and on the unseen team's side of the lines' white.
   const bool probed = robots.size() > n_robots && neutral.valid;
   TwoMeansResult r;
   if (probed) r = clusterCenters(true);
-  // The probed centers all in one cluster, and most of the seen team's in
-  // the other (a first-pass robot of two dots may be anything).
+  // (Most of the seen team's: a first-pass robot of two dots may be
+  // anything.)
   bool whole = probed && r.separated;
   int seen_split[2] = {0, 0};
   for (size_t i = 0; i < n_robots && whole; ++i) ++seen_split[center_labels[i]];
@@ -85,7 +78,8 @@ void Detector::Impl::learnUnseenTeam() {
   learnClassFrom(unseen, r, 1 - seen_label);
 }
 
-int Detector::Impl::addRobotsAroundUnpeakedCenters() {
+int Detector::Impl::robotsAroundUnpeakedCenters() {
+  if (!frame_view.image || !opt.probe_missing_sides) return 0;
   auto free = [&](int i) {
     const FrameBlob& b = blobs[i];
     return b.valid && !b.streak && !b.weak && b.robot < 0;
