@@ -483,6 +483,17 @@ const std::vector<Condition>& conditions() {
          s.materials.yellow = {240, 237, 77};
          s.materials.blue = {38, 74, 159};
        }},
+      // A warm cast at gamma 1.8, beyond the range (moderate venue
+      // #570 at 1.59): teal dots read a third as bright as the amber
+      // centers or less ((30, 50, 35) by (189, 107, 59) at 1.59) and were
+      // taken for the robot's top (recall 0.761 and 0.807 over the four
+      // placements before darkerThanMarker).
+      {"warm_gamma_1.8_amber_teal", [](SceneSpec& s, int) {
+         cast(s, {1.53, 0.81, 0.68}, 0.44, 1.8);
+         s.materials.green = {45, 175, 129};
+         s.materials.yellow = {244, 210, 48};
+         s.materials.blue = {85, 161, 232};
+       }},
   };
   return list;
 }

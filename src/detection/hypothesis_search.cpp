@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detection/ring_orientation.h"
 #include "detection/weak_sides.h"
 #include "pipeline/view_stretch.h"
 
@@ -23,6 +24,7 @@ void HypothesisSearch::setOptions(const DetectorOptions& opt, double ref_height,
 
 void HypothesisSearch::find(const HypothesisInputs& in, std::vector<Hypothesis>& out) {
   in_ = in;
+  top_of_ = -1;
   out.clear();
   for (int c = 0; c < in_.n_strong; ++c) {
     const Hypothesis best = bestAt(c);
@@ -32,6 +34,7 @@ void HypothesisSearch::find(const HypothesisInputs& in, std::vector<Hypothesis>&
 
 Hypothesis HypothesisSearch::bestAt(const HypothesisInputs& in, int c) {
   in_ = in;
+  top_of_ = -1;
   return bestAt(c);
 }
 
@@ -51,7 +54,7 @@ Hypothesis HypothesisSearch::bestAt(int c) {
     if (i == c || h.second < sq(kMinSideDistance)) continue;
     // A peak much darker than the center is the robot top's (chroma
     // ringing around the dots after JPEG), never a marker.
-    if (brightness(i) < kTopBrightness * brightness(c)) continue;
+    if (darkerThanMarker(i, c)) continue;
     if (k == static_cast<int>(nbr.size())) break;
     nbr[k] = i;
     dev[k] = std::abs(std::sqrt(h.second) - RobotPatternGeometry::kSideBlobDistance);
@@ -128,6 +131,18 @@ Hypothesis HypothesisSearch::bestAt(int c) {
   return best;
 }
 
+bool HypothesisSearch::darkerThanMarker(int i, int c) {
+  if (brightness(i) >= kTopBrightness * brightness(c)) return false;
+  if (!opt_.probe_missing_sides || !in_.frame.image) return true;
+  if (top_of_ != c) {  // read once per center, only where a peak needs it
+    top_of_ = c;
+    const FieldMm cp = blobAt(c).at_ref;
+    const auto top = ringDarkest(in_.frame, camera_, {cp.x, cp.y, ref_height_});
+    top_floor_ = top ? kDotOverTop * *top : -1;
+  }
+  return !(top_floor_ >= 0 && brightness(i) >= top_floor_);
+}
+
 FitTolerance HypothesisSearch::fitToleranceAt(const FieldMm& p) const {
   FitTolerance t{opt_.score_scale};
   if (!stretched_view_) return t;
@@ -171,7 +186,7 @@ void HypothesisSearch::completeWithWeak(int c, const int* nbr, int k, Hypothesis
     // carpet's texture (a sun patch over a ball lit three peaks around it,
     // a robot of a ball and the carpet); neither is a marker.
     for (int s = 1; s < kPatternSlots; ++s)
-      if (found[s] >= 0 && (brightness(in_.n_strong + found[s]) < kTopBrightness * brightness(c) ||
+      if (found[s] >= 0 && (darkerThanMarker(in_.n_strong + found[s], c) ||
                             weakPeakIsCarpet(pose, s, in_.n_strong + found[s])))
         found[s] = -1, --n_weak;
     if (n_weak == 0 || n + n_weak < min_n - marker_ok) return;
@@ -245,7 +260,7 @@ int HypothesisSearch::sidePeaks(int c, const int* nbr, int k, std::array<int, 64
   for (const auto& hit : in_.weak_index->within(blobAt(c).at_ref, opt_.side_search_radius)) {
     if (m == static_cast<int>(out.size())) break;
     const int w = in_.n_strong + static_cast<int>(hit.first);
-    if (hit.second >= sq(kMinSideDistance) && brightness(w) >= kTopBrightness * brightness(c)) out[m++] = w;
+    if (hit.second >= sq(kMinSideDistance) && !darkerThanMarker(w, c)) out[m++] = w;
   }
   return m;
 }

@@ -57,6 +57,12 @@ class HypothesisSearch {
   Hypothesis bestAt(int c);
   const FrameBlob& blobAt(int i) const { return (*in_.blobs)[i]; }
   float brightness(int i) const { return blobAt(i).brightness(); }
+  // Whether peak i is too dark to be a marker of center c: below
+  // kTopBrightness of the center's brightness and, where the frame shows
+  // the robot's top along the side-dot ring, below kDotOverTop times that
+  // top (a steep gamma darkens a teal dot to a third of an amber center
+  // while it stays many times as bright as the black top).
+  bool darkerThanMarker(int i, int c);
 
   // Whether the camera sees any part of `area` stretched enough for
   // fitToleranceAt to stretch its tolerance, on a 100 mm lattice; a camera
@@ -158,6 +164,9 @@ class HypothesisSearch {
   // them, where the fit scores at least min_weak_fit.
   template <class Fn>
   void forSideBlobPairs(int c, const int* nbr, int k, Fn&& fn) const;
+
+  int top_of_ = -1;      // the center whose top floor top_floor_ holds
+  float top_floor_ = -1;  // kDotOverTop times its ring's darkest point (-1: none)
 
   static constexpr int kMaxNeighbors = 10;        // side blob candidates per center
   static constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs

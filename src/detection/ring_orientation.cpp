@@ -10,34 +10,43 @@
 namespace dv {
 namespace {
 
-constexpr float kDotOverTop = 2.f;
-
 double slotAngle(int slot) {
   const FieldMm o = patternOffset(slot);
   return std::atan2(o.y, o.x);
 }
 
-}  // namespace
-
-std::optional<double> ringOrientation(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-                                      float min_bright) {
-  if (!frame.image || frame.image->empty()) return std::nullopt;
+// Brightness along the ring; false where it leaves the image.
+bool readRing(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+              std::array<float, kRingPoints>& bright) {
+  if (!frame.image || frame.image->empty()) return false;
   const double r = RobotPatternGeometry::kSideBlobDistance;
   const double w = frame.image->cols, h = frame.image->rows;
-  std::array<float, kRingPoints> bright;
   for (int i = 0; i < kRingPoints; ++i) {
     const double a = 2 * kPi * i / kRingPoints;
     const auto px = camera.fieldToImage({center.x + r * std::cos(a), center.y + r * std::sin(a), center.z});
-    if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) return std::nullopt;
+    if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) return false;
     float rgb[3];
     frameRgbAt(frame, px->u, px->v, rgb);
     bright[i] = rgb[0] + rgb[1] + rgb[2];
   }
+  return true;
+}
+
+}  // namespace
+
+std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center) {
+  std::array<float, kRingPoints> bright;
+  if (!readRing(frame, camera, center, bright)) return std::nullopt;
+  return *std::min_element(bright.begin(), bright.end());
+}
+
+std::optional<double> ringOrientation(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+                                      float min_bright) {
+  std::array<float, kRingPoints> bright;
+  if (!readRing(frame, camera, center, bright)) return std::nullopt;
   const auto [lo, hi] = std::minmax_element(bright.begin(), bright.end());
   const float thr = std::max(min_bright, 0.5f * (*lo + *hi));
-  // Dots beside a black top, not the carpet's texture: the brightest
-  // point at least kDotOverTop times the darkest (4.9 or more on the
-  // sweeps' robots, 1.3 on bare carpet, 3.1 where a line crosses it).
+  // Dots beside a black top, not the carpet's texture.
   if (*hi < kDotOverTop * *lo) return std::nullopt;
   const double step = 2 * kPi / kRingPoints;
   auto ringIndex = [&](double a) {
