@@ -130,6 +130,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     dropImplausibleCenters();
   }
   learnFrameColors();
+  dropDotsTakenForCenters();
   searchAgainWithFrameColors();
   learnUnseenTeam();
   robotsAroundUnpeakedCenters();

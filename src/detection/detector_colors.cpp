@@ -142,6 +142,26 @@ void Detector::Impl::dropCentersAloneAtCrossings() {
   robots.resize(kept);
 }
 
+void Detector::Impl::dropDotsTakenForCenters() {
+  int kept = 0;
+  for (int i = 0; i < static_cast<int>(robots.size()); ++i) {
+    const Hypothesis& r = robots[i];
+    bool drop = false;
+    if (r.n <= 2) {
+      const ClippedColor c = centerSeen(blobs[r.blob[0]]);
+      const float d_team = c.distance(frame_color[r.team == Team::Yellow ? kYellow : kBlue]);
+      for (int k : {kGreen, kPink}) drop = drop || (frame_seen[k] && c.distance(frame_color[k]) < d_team);
+    }
+    for (int b = 0; b < r.n; ++b) blobs[r.blob[b]].robot = drop ? -1 : kept;
+    if (drop) {
+      blobs[r.blob[0]].implausible_center = true;
+      continue;
+    }
+    robots[kept++] = robots[i];
+  }
+  robots.resize(kept);
+}
+
 void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {
   learnClassFrom(a, r, 0);
   learnClassFrom(b, r, 1);

@@ -240,6 +240,13 @@ struct Detector::Impl {
   // frame shows at the slots.
   void dropCentersAloneAtCrossings();
 
+  // Drops the robots of a center and at most one side blob whose center
+  // is nearer this frame's green or pink (learned from the side blobs)
+  // than its own team's color: a side dot taken for a center (a robot on
+  // a line whose pale pinks made no peak, its green beside its center);
+  // the center is marked implausible and its blobs freed for the second
+  // search.
+  void dropDotsTakenForCenters();
   // This frame's class colors from its robots: the centers split into
   // yellow and blue (each robot's team), the side blobs into green and
   // pink; frame_color holds them (the retained class where a class had no
