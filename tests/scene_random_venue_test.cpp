@@ -156,5 +156,43 @@ TEST(SceneRandomVenue, ACenterClippedWhiteIsItsFourDotsCenter) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Moderate venue #570: under a warm cast (1.53, 0.81, 0.68) at gamma 1.59
+// the teal dots of an amber robot read (30, 50, 35), a third of its center's
+// brightness (189, 107, 59): taken for the robot's top, they left it no
+// pattern, and one of them became a blue robot's center. A peak darker
+// than a third of the center is still a marker where it is twice as bright
+// as the top between the dots (hypothesis_search.cpp, darkerThanMarker).
+// Held here at gamma 1.7, where six robots were lost so.
+TEST(SceneRandomVenue, DarkDotsBesideABrightCenterAreMarkers) {
+  const SceneScore s = venueScore({570, -1632, 1019, {246, 103, 179}, {45, 175, 129}, {244, 210, 48}, {85, 161, 232},
+                                   {250, 104, 20}, {1.53, 0.81, 0.68}, 0.44, 1.70, 0.89, 1.66, -1.69, 0});
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+}
+
+// The same venue at its own gamma: with the classes learned from every
+// robot, where the center circle meets the halfway line a round blob of
+// the crossing's false colors, (104, 67, 54), was taken for a ball. At a
+// crossing a color no class explains is no ball (detector_balls.cpp).
+TEST(SceneRandomVenue, ACrossingsFalseColorIsNoBall) {
+  const SceneScore s = venueScore({570, -1632, 1019, {246, 103, 179}, {45, 175, 129}, {244, 210, 48}, {85, 161, 232},
+                                   {250, 104, 20}, {1.53, 0.81, 0.68}, 0.44, 1.59, 0.89, 1.66, -1.69, 0});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
+}
+
+// Moderate venue #594: under a warm cast at gamma 0.65 the pink dots of a
+// blue robot standing on a line read nearly white and made no peak; its
+// yellow-green dot (236, 244, 160) became the center of a yellow robot of
+// one side blob, the blue center its side. A center of at most one side
+// blob nearer the frame's green or pink than its team's color is a dot
+// (detector_colors.cpp, dropDotsTakenForCenters).
+TEST(SceneRandomVenue, ADotIsNoCenterOfOneSideBlob) {
+  const SceneScore s = venueScore({594, -940, -2297, {255, 139, 190}, {139, 206, 58}, {242, 227, 66}, {28, 56, 143},
+                                   {255, 119, 20}, {1.49, 1.07, 0.74}, 0.57, 0.65, 1.06, 1.74, 1.02, 0});
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv
