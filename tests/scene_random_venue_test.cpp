@@ -194,5 +194,19 @@ TEST(SceneRandomVenue, ADotIsNoCenterOfOneSideBlob) {
   EXPECT_EQ(s.precision(), 1.0);
 }
 
+// Extreme venue #366: under a warm cast (1.54, 1.09, 0.68) at exposure 1.21
+// every lemon center clips in red and green, (251, 253, 145), and the
+// sky-blue centers read gray, (167, 197, 182): no blob, the blue team
+// unseen. The probe found seven of its full patterns, but the unseen
+// team's split was learned from unclipped centers only, which were then
+// the probed ones alone: one cluster. Where the seen team clipped in
+// every center, the split is learned from every center (learnUnseenTeam).
+TEST(SceneRandomVenue, ATeamClippedInEveryCenterStillSplitsFromTheUnseen) {
+  const SceneScore s = venueScore({366, -3375, -1172, {234, 58, 165}, {132, 204, 64}, {244, 206, 44}, {85, 161, 232},
+                                   {241, 73, 20}, {1.54, 1.09, 0.68}, 0.51, 1.13, 1.21, 1.68, -2.13, 1.57});
+  EXPECT_GE(s.recall(), 15.0 / 16);
+  EXPECT_EQ(s.precision(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

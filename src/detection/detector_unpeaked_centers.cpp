@@ -59,8 +59,15 @@ void Detector::Impl::learnUnseenTeam() {
   robotsAroundUnpeakedCenters();
   probing_unseen_team = false;
   const bool probed = robots.size() > n_robots && neutral.valid;
+  // The split is learned from the unclipped centers where the seen team
+  // shows some; where every one of its centers clipped (an amber team in
+  // a sun-lit, over-exposed frame), the probed ones alone would be all
+  // the samples: then from every center, as the first split was.
+  bool seen_unclipped = false;
+  for (size_t i = 0; i < n_robots; ++i)
+    seen_unclipped = seen_unclipped || !centerSeen(blobs[robots[i].blob[0]]).saturated();
   TwoMeansResult r;
-  if (probed) r = clusterCenters(true);
+  if (probed) r = clusterCenters(seen_unclipped);
   // (Most of the seen team's: a first-pass robot of two dots may be
   // anything.)
   bool whole = probed && r.separated;
