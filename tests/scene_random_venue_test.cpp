@@ -160,9 +160,10 @@ TEST(SceneRandomVenue, ACenterClippedWhiteIsItsFourDotsCenter) {
 // the teal dots of an amber robot read (30, 50, 35), a third of its center's
 // brightness (189, 107, 59): taken for the robot's top, they left it no
 // pattern, and one of them became a blue robot's center. A peak darker
-// than a third of the center is still a marker where it is twice as bright
-// as the top between the dots (hypothesis_search.cpp, darkerThanMarker).
-// Held here at gamma 1.7, where six robots were lost so.
+// than a third of the center is still a marker where it lies nearer the
+// center than the top between the dots in the ratio of brightnesses
+// (hypothesis_search.cpp, darkerThanMarker). Held here at gamma 1.7, where
+// six robots were lost so.
 TEST(SceneRandomVenue, DarkDotsBesideABrightCenterAreMarkers) {
   const SceneScore s = venueScore({570, -1632, 1019, {246, 103, 179}, {45, 175, 129}, {244, 210, 48}, {85, 161, 232},
                                    {250, 104, 20}, {1.53, 0.81, 0.68}, 0.44, 1.70, 0.89, 1.66, -1.69, 0});

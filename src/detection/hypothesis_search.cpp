@@ -138,7 +138,7 @@ bool HypothesisSearch::darkerThanMarker(int i, int c) {
     top_of_ = c;
     const FieldMm cp = blobAt(c).at_ref;
     const auto top = ringDarkest(in_.frame, camera_, {cp.x, cp.y, ref_height_});
-    top_floor_ = top ? kDotOverTop * *top : -1;
+    top_floor_ = top ? std::sqrt(std::max(*top, 1.f) * brightness(c)) : -1;
   }
   return !(top_floor_ >= 0 && brightness(i) >= top_floor_);
 }

@@ -59,9 +59,12 @@ class HypothesisSearch {
   float brightness(int i) const { return blobAt(i).brightness(); }
   // Whether peak i is too dark to be a marker of center c: below
   // kTopBrightness of the center's brightness and, where the frame shows
-  // the robot's top along the side-dot ring, below kDotOverTop times that
-  // top (a steep gamma darkens a teal dot to a third of an amber center
-  // while it stays many times as bright as the black top).
+  // the robot's top along the side-dot ring (its darkest point), nearer
+  // to the top than to the center in the ratio of brightnesses (below
+  // their geometric mean). A gamma raises every brightness to a power,
+  // which keeps that midpoint in place: under gamma 1.6 a teal dot reads a
+  // third of an amber center and sixteen times the black top; a dark
+  // ringing peak on the top stays nearer the top.
   bool darkerThanMarker(int i, int c);
 
   // Whether the camera sees any part of `area` stretched enough for
@@ -166,7 +169,7 @@ class HypothesisSearch {
   void forSideBlobPairs(int c, const int* nbr, int k, Fn&& fn) const;
 
   int top_of_ = -1;      // the center whose top floor top_floor_ holds
-  float top_floor_ = -1;  // kDotOverTop times its ring's darkest point (-1: none)
+  float top_floor_ = -1;  // geometric mean of its brightness and its ring's darkest (-1: none)
 
   static constexpr int kMaxNeighbors = 10;        // side blob candidates per center
   static constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs

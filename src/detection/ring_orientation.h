@@ -21,16 +21,11 @@ inline constexpr int kRingPoints = 72;
 // from where the bright arcs lie. A point is bright nearer to the ring's
 // brightest than to its darkest, and at least `min_bright` (r + g + b).
 // None where the ring leaves the image, or no single run fits.
-// The ring's dots are at least this many times as bright as its darkest
-// point, the top between them (4.9 or more on the sweeps' robots, 1.3 on
-// bare carpet, 3.1 where a line crosses it).
-inline constexpr float kDotOverTop = 2.f;
+std::optional<double> ringOrientation(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
+                                      float min_bright);
 
 // The darkest brightness (r + g + b) along that ring: the robot's top
 // between its dots. None where the ring leaves the image.
 std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center);
-
-std::optional<double> ringOrientation(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-                                      float min_bright);
 
 }  // namespace dv
