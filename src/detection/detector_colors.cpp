@@ -97,69 +97,66 @@ bool Detector::Impl::splitByClipping(const TwoMeansResult& r) const {
 
 ClippedColor Detector::Impl::centerSeen(const FrameBlob& b) { return ClippedColor(centerRgb(b)); }
 
-int Detector::Impl::dropImplausibleCenters() {
+template <class Drop>
+int Detector::Impl::dropRobots(Drop drop, bool implausible) {
   const int nr = static_cast<int>(robots.size());
-  if (nr == 0) return 0;
-  const auto res = clusterCenters();
   int kept = 0;
   for (int i = 0; i < nr; ++i) {
-    // A center clipped in two channels (a yellow top in a sun patch) is
-    // judged by the colors it may have been, as the field and the lines
-    // are; one clipped in all three by its rim where it has one (centerRgb:
-    // a line crossing's is line and carpet), else as seen.
-    const ClippedColor c = centerSeen(blobs[robots[i].blob[0]]);
-    const float d_team = c.distance(res.mean[center_labels[i]]);
-    const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
-    // One with no hue left (clipped white in a sun patch) is its four side
-    // blobs' center, where no markings cross (their false colors make
-    // patterns): its rim, the robot's dark top mixed with the light,
-    // reads as gray as a line's.
-    const FrameBlob& center = blobs[robots[i].blob[0]];
-    const bool by_pattern =
-        ClippedColor(center.rgb).white() && robots[i].n == kPatternSlots && !atCrossing(center.at_ball);
-    if (!by_pattern && d_bg < d_team) {
-      for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
-      blobs[robots[i].blob[0]].implausible_center = true;
+    const bool dropped = drop(i);
+    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = dropped ? -1 : kept;
+    if (dropped) {
+      blobs[robots[i].blob[0]].implausible_center = blobs[robots[i].blob[0]].implausible_center || implausible;
       continue;
     }
-    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = kept;
     robots[kept++] = robots[i];
   }
   robots.resize(kept);
   return nr - kept;
 }
 
+int Detector::Impl::dropImplausibleCenters() {
+  if (robots.empty()) return 0;
+  const auto res = clusterCenters();
+  return dropRobots(
+      [&](int i) {
+        // A center clipped in two channels (a yellow top in a sun patch) is
+        // judged by the colors it may have been, as the field and the lines
+        // are; one clipped in all three by its rim where it has one
+        // (centerRgb: a line crossing's is line and carpet), else as seen.
+        const FrameBlob& center = blobs[robots[i].blob[0]];
+        const ClippedColor c = centerSeen(center);
+        const float d_team = c.distance(res.mean[center_labels[i]]);
+        const float d_bg = std::min(c.distance(classes[kField].color), c.distance(classes[kWhite].color));
+        // One with no hue left (clipped white in a sun patch) is its four
+        // side blobs' center, where no markings cross (their false colors
+        // make patterns): its rim, the robot's dark top mixed with the
+        // light, reads as gray as a line's.
+        const bool by_pattern =
+            ClippedColor(center.rgb).white() && robots[i].n == kPatternSlots && !atCrossing(center.at_ball);
+        return !by_pattern && d_bg < d_team;
+      },
+      true);
+}
+
 void Detector::Impl::dropCentersAloneAtCrossings() {
   // (Tungsten, lemon centers and yellow-green dots at 1224 x 1024: where
   // the center circle crosses the halfway line, the thin lines' false
   // colors read as a lemon center and its arms as four yellow-green dots.)
-  int kept = 0;
-  for (int i = 0; i < static_cast<int>(robots.size()); ++i) {
-    const bool drop = robots[i].n == 1 && atCrossing(blobs[robots[i].blob[0]].at_ball);
-    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = drop ? -1 : kept;
-    if (!drop) robots[kept++] = robots[i];
-  }
-  robots.resize(kept);
+  dropRobots([&](int i) { return robots[i].n == 1 && atCrossing(blobs[robots[i].blob[0]].at_ball); }, false);
 }
 
 void Detector::Impl::dropDotsTakenForCenters() {
-  int kept = 0;
-  for (int i = 0; i < static_cast<int>(robots.size()); ++i) {
-    const Hypothesis& r = robots[i];
-    bool drop = false;
-    if (r.n <= 2) {
-      const ClippedColor c = centerSeen(blobs[r.blob[0]]);
-      const float d_team = c.distance(frame_color[r.team == Team::Yellow ? kYellow : kBlue]);
-      for (int k : {kGreen, kPink}) drop = drop || (frame_seen[k] && c.distance(frame_color[k]) < d_team);
-    }
-    for (int b = 0; b < r.n; ++b) blobs[r.blob[b]].robot = drop ? -1 : kept;
-    if (drop) {
-      blobs[r.blob[0]].implausible_center = true;
-      continue;
-    }
-    robots[kept++] = robots[i];
-  }
-  robots.resize(kept);
+  dropRobots(
+      [&](int i) {
+        const Hypothesis& r = robots[i];
+        if (r.n > 2) return false;
+        const ClippedColor c = centerSeen(blobs[r.blob[0]]);
+        const float d_team = c.distance(frame_color[r.team == Team::Yellow ? kYellow : kBlue]);
+        bool dot = false;
+        for (int k : {kGreen, kPink}) dot = dot || (frame_seen[k] && c.distance(frame_color[k]) < d_team);
+        return dot;
+      },
+      true);
 }
 
 void Detector::Impl::learnClass(int a, int b, const TwoMeansResult& r) {

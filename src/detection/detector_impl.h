@@ -223,6 +223,11 @@ struct Detector::Impl {
   // samples and labels are left in `samples` and `labels`.
   TwoMeansResult splitSides(const ColorVec ext[2]);
 
+  // Drops the robots i for which drop(i) holds, in place, freeing their
+  // blobs (and marking their centers implausible where `implausible`: no
+  // later search takes them for centers); returns how many.
+  template <class Drop>
+  int dropRobots(Drop drop, bool implausible);
   // Drops the robots whose center looks like the field or a line more than
   // like its team's color, marks those centers implausible, and returns how
   // many were dropped.
