@@ -31,8 +31,9 @@ struct FrameBlob {
 
 // Brightness (r + g + b) as a share of the center blob's: a side blob is
 // at least kTopBrightness (the markers are about as bright as the centers;
-// darker peaks lie on the robot top), a marker read from the frame where no
-// peak was found at least kMarkerBrightness.
+// darker peaks lie on the robot top) unless the top the frame shows is
+// darker still (HypothesisSearch::darkerThanMarker), a marker read from the
+// frame where no peak was found at least kMarkerBrightness.
 constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
 
 namespace detector_detail {
