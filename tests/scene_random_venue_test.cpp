@@ -209,5 +209,18 @@ TEST(SceneRandomVenue, ATeamClippedInEveryCenterStillSplitsFromTheUnseen) {
   EXPECT_EQ(s.precision(), 1.0);
 }
 
+// Extreme venue #470 (moderate #470 at exposure 1.19 and uneven light
+// 2.5): the probe found the gray sky-blue centers' full patterns, but two
+// first-pass robots with centers of neither team's color, brown (129, 120,
+// 83) and dark green (41, 48, 29), joined their cluster and pulled its
+// mean below the lines' blue over green: the blue team was not learned
+// (robots 0.438). The unseen team's color is its probed centers' alone
+// (learnUnseenTeam).
+TEST(SceneRandomVenue, AStrayCenterIsNoPartOfTheUnseenTeam) {
+  const SceneScore s = venueScore({470, -1445, -2029, {238, 71, 169}, {52, 177, 123}, {241, 236, 75}, {87, 164, 235},
+                                   {250, 103, 20}, {1.56, 0.94, 0.65}, 0.52, 1.50, 1.19, 2.46, 1.31, 1.92});
+  EXPECT_GE(s.recall(), 14.0 / 16);
+}
+
 }  // namespace
 }  // namespace dv

@@ -75,6 +75,18 @@ void Detector::Impl::learnUnseenTeam() {
   for (size_t i = 0; i < n_robots && whole; ++i) ++seen_split[center_labels[i]];
   whole = whole && seen_split[seen_label] > seen_split[1 - seen_label];
   for (size_t i = n_robots; i < robots.size() && whole; ++i) whole = center_labels[i] != seen_label;
+  // The unseen team's color is its probed centers' alone: a first-pass
+  // robot that joined their cluster may be anything (extreme #470: a
+  // brown and a dark green center pulled the gray sky-blue centers' mean
+  // below the lines' blue over green).
+  if (whole) {
+    samples.clear();
+    sample_rgb.clear();
+    for (size_t i = n_robots; i < robots.size(); ++i) addSample(centerRgb(blobs[robots[i].blob[0]]));
+    labels.resize(samples.size());
+    const ColorVec teams[2] = {classes[kYellow].color, classes[kBlue].color};
+    r = oneClass(samples.data(), static_cast<int>(samples.size()), teams, 1 - seen_label, labels.data());
+  }
   for (size_t i = n_robots; i < robots.size(); ++i)
     for (int b = 1; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
   robots.resize(n_robots);
