@@ -4,6 +4,8 @@
 // marker class both count as the ball's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <opencv2/imgproc.hpp>
 
 #include "detection/marker_colored_ball.h"
@@ -121,6 +123,24 @@ TEST(MarkerColoredBall, AnOverExposedRimMixesWithTheCarpetAroundIt) {
     field_rim[k] = (kYellowDot[k] + kCarpet[k]) / 2, pink_rim[k] = (kPinkDot[k] + lit[k]) / 2;
   EXPECT_TRUE(yellow.isRim(field_rim));
   EXPECT_TRUE(yellow.isRim(field_rim, &around));
+  EXPECT_FALSE(yellow.isRim(pink_rim, &around));
+}
+
+// More light clips the ball along its own path, orange to a pale yellow
+// whose blue is the ball's, not the yellow centers': a rim of that mixed
+// with the lit carpet is a rim too. A pink dot clipped alike is none.
+TEST(MarkerColoredBall, AnOverExposedRimMayMixTheBallsOwnClippedColor) {
+  const FrameColors colors = paintedColors();
+  const OrangeOnly judge;
+  const MarkerColoredBallTest yellow(colors, judge, kYellow);
+  const float lit[3] = {140, 250, 200};
+  const ColorVec around = feature(lit);
+  float ball_rim[3], pink_rim[3];
+  for (int k = 0; k < 3; ++k) {
+    ball_rim[k] = (std::min(255.f, 2.5f * kOrangeBall[k]) + lit[k]) / 2;
+    pink_rim[k] = (std::min(255.f, 2.5f * kPinkDot[k]) + lit[k]) / 2;
+  }
+  EXPECT_TRUE(yellow.isRim(ball_rim, &around));
   EXPECT_FALSE(yellow.isRim(pink_rim, &around));
 }
 

@@ -222,5 +222,19 @@ TEST(SceneRandomVenue, AStrayCenterIsNoPartOfTheUnseenTeam) {
   EXPECT_GE(s.recall(), 14.0 / 16);
 }
 
+// Moderate venue #566: a sun patch (1.87) over the ball under a cold cast
+// (0.88, 0.99, 1.48) clips it to (246, 241, 60). Its unclipped rim,
+// (206, 213, 59), is the carpet mixed with the ball's own color as the
+// light clipped it, a paler yellow than the amber centers': 47 from them,
+// 12 from their mix with the lit carpet, beyond the class's reach (11). The
+// rim may mix the ball's clip path too (marker_colored_ball.cpp).
+TEST(SceneRandomVenue, ABallClippedInTheSunKeepsItsOwnPaleYellow) {
+  const SceneScore s = venueScore({566, -3245, 724, {245, 100, 178}, {89, 190, 96}, {248, 183, 19}, {66, 126, 203},
+                                   {254, 115, 20}, {0.88, 0.99, 1.48}, 1.23, 0.91, 1.15, 2.09, -0.42, 1.87});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
+  EXPECT_EQ(s.recall(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

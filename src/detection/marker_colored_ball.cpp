@@ -28,15 +28,41 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   return d <= reach && d < seen.distance(f_.color[kField]);
 }
 
+namespace {
+// The ball's color as ever more light clips it: its channels scaled by `t`
+// from where the brightest reaches the sensor's top, each capped there. A
+// camera clips before its gamma, and a gamma scales every unclipped channel
+// alike, so the path is the same under any gamma.
+ColorVec clippedBy(const ColorVec& color, float t) {
+  const float top = std::max({color.c[0], color.c[1], color.c[2]});
+  float rgb[3];
+  for (int k = 0; k < 3; ++k) rgb[k] = std::min(255.f, 255.f * t * color.c[k] / top);
+  return colorFeature(rgb[0], rgb[1], rgb[2]);
+}
+// Steps along that path: a tenth more light each, fine beside a class's
+// least reach (a step moves a channel's chromaticity by a few units).
+constexpr float kClipStep = 1.1f;
+}  // namespace
+
 bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
   const float reach = classReach(f_.spread[k_]);
-  auto mixWith = [&](const ColorVec& carpet) {
-    const float d = streakColorDistance(seen, carpet, f_.color[k_]);
+  // The rim mixes the carpet with the marker's color or, with the carpet
+  // the ring shows, with the ball's own as the light clips it: from orange
+  // through a pale yellow whose blue the cast and gamma set, not the
+  // yellow centers' (a sun patch's clipped balls read 20..47 from those and
+  // 1..7 from this path).
+  const ColorVec& orange = f_.color[kOrange];
+  const float dimmest = std::max(1.f, std::min({orange.c[0], orange.c[1], orange.c[2]}));
+  const float last = std::max({orange.c[0], orange.c[1], orange.c[2]}) / dimmest;
+  auto mixWith = [&](const ColorVec& carpet, bool clip_path) {
+    float d = streakColorDistance(seen, carpet, f_.color[k_]);
+    for (float t = 1; clip_path && t < last; t *= kClipStep)
+      d = std::min(d, streakColorDistance(seen, carpet, clippedBy(orange, t)));
     return d <= reach && d < seen.distance(carpet);
   };
-  return mixWith(f_.color[kField]) || (around && mixWith(*around));
+  return mixWith(f_.color[kField], false) || (around && mixWith(*around, true));
 }
 
 namespace {
