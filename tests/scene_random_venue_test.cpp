@@ -236,5 +236,17 @@ TEST(SceneRandomVenue, ABallClippedInTheSunKeepsItsOwnPaleYellow) {
   EXPECT_EQ(s.recall(), 1.0);
 }
 
+// Extreme venue #594 (moderate #594 at exposure 1.25): under the warm
+// cast at gamma 0.65 the ball reads (236, 177, 125), nearer to orange than
+// to the lemon centers by a small margin (confidence 0.15). Alone on the
+// carpet, its hue between pink's and yellow's, the place vouches for it
+// (detector_balls.cpp).
+TEST(SceneRandomVenue, ABallOnlyJustNearerOrangeStandsAloneOnTheCarpet) {
+  const SceneScore s = venueScore({594, -940, -2297, {255, 139, 190}, {139, 206, 58}, {242, 227, 66}, {28, 56, 143},
+                                   {255, 119, 20}, {1.49, 1.07, 0.74}, 0.57, 0.65, 1.25, 2.24, 1.02, 0});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.recall(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

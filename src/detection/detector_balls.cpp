@@ -214,6 +214,13 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // washed out to (182, 110, 52), nearer to yellow than to orange).
     bool streak = b.streak;
     double color_conf_used = color_conf;
+    // Nearer to orange than to any class, if only just (over-exposed under
+    // a warm cast at gamma 0.65 a ball read (236, 177, 125), confidence
+    // 0.15 against the lemon centers): where its hue lies clearly between
+    // pink's and yellow's and it stands alone on the carpet, as a color no
+    // class explains must, the place vouches for it in full.
+    if (!unexpected && !b.streak && judge.hueClearlyBetweenPinkAndYellow(seen) && aloneOnTheCarpet(i))
+      color_conf_used = 1;
     if (unexpected && !b.streak) {
       if (!judge.hueClearlyBetweenPinkAndYellow(seen) && !aloneOnTheCarpet(i)) {
         // In a marker's hue it may be a ball in that marker's color, as one
