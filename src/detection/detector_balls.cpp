@@ -93,9 +93,16 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   const BallColorJudge judge(ball_colors, min_ball_brightness);
   const BallColorJudge judge_unfaded(ball_colors, min_ball_brightness, false);
   const double keep_out = minBallOutsideDistance(opt.ball_radius);
-  // Rules: at least 80 % of the ball is outside every robot's top.
-  auto insideRobot = [&](const FieldMm& p) {
+  // Rules: at least 80 % of the ball is outside every robot's top. Nor is
+  // blob i a ball where its picture lies on a robot's top, read on the
+  // top's plane: the top stands between whatever lies below and the camera
+  // (a robot's pale pink dot by the image's edge, left over by its pattern,
+  // lay 133 mm from its center on the ball's plane).
+  auto insideRobot = [&](const FieldMm& p, int i = -1) {
     for (const auto& r : robots) {
+      if (i >= 0 && distanceToRobotTop(blobs[i].at_team[r.team == Team::Yellow ? 0 : 1], r.pose.position,
+                                       r.pose.orientation) == 0)
+        return true;
       if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
       if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) return true;
     }
@@ -187,12 +194,12 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       if (nearest_neg == kField && !b.streak) {
         for (int k = 0; k < 3; ++k) field_sum.c[k] += b.color.c[k];
         ++field_n;
-      } else if (!b.streak && !insideRobot(p)) {
+      } else if (!b.streak && !insideRobot(p, i)) {
         keepIfMarkerColored(i, nearest_neg);
       }
       // A blob no color rule takes: its motion may still tell it
       // (fast_streaks.h).
-      if (tracking && !judge.isCarpet(seen.rgb()) && !insideRobot(p) && !onMarking(p) && !onGoalWall(p)) {
+      if (tracking && !judge.isCarpet(seen.rgb()) && !insideRobot(p, i) && !onMarking(p) && !onGoalWall(p)) {
         fast_streaks.add(p);
         const double chain = fast_streaks.confidence(p);
         if (chain >= opt.min_ball_confidence) {
@@ -203,7 +210,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       }
       continue;
     }
-    if (insideRobot(p)) continue;
+    if (insideRobot(p, i)) continue;
     // A round blob of a shade no class explains is a ball only where its
     // color stays within one ball's rim (line crossings run on along their
     // lines). A fast ball's does not: motion stretches it, and the pixel
@@ -322,7 +329,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     c.pos = b.at_ball;
     ballTemporal(c, tracking);
     const double course = courseConfidence(c);
-    if (course < opt.min_ball_confidence || !courseFree(c) || insideRobot(c.pos) || likeWhatLiesAround(i)) continue;
+    if (course < opt.min_ball_confidence || !courseFree(c) || insideRobot(c.pos, i) || likeWhatLiesAround(i)) continue;
     c.confidence = c.rank = course;
     c.course_only = true;
     ball_cands.push_back(c);
