@@ -372,7 +372,7 @@ TEST(DetectionTracking, EchoesOnAKickedBallsCourseAreNotBalls) {
 // stronger than the kicked ball, which blurs into a streak. The streak must
 // take the ball's track and the copy go, also once the ball is round again.
 TEST(DetectionTracking, AStaleCopyWhereTheBallLayLosesToTheStreakThatLeftIt) {
-  const FieldMm rest{-2250, 0};
+  const FieldMm rest{2000, 0};
   kickedBall(
       rest, 10, 900,
       [&](SceneBuilder& s, int f) {
@@ -392,7 +392,7 @@ TEST(DetectionTracking, AStaleCopyWhereTheBallLayLosesToTheStreakThatLeftIt) {
 // only a ball moves so fast, it continues the track; the same color off the
 // course is no ball.
 TEST(DetectionTracking, AFastBallsStreakInAnotherColorContinuesItsCourse) {
-  const FieldMm rest{-2250, 0};
+  const FieldMm rest{2000, 0};
   kickedBall(
       rest, 10, 400,
       [&](SceneBuilder& s, int f) {
@@ -420,7 +420,7 @@ TEST(DetectionTracking, AFastBallsStreakInAnotherColorContinuesItsCourse) {
 // a carpet-colored one on it, nor one where the ball was a frame before
 // (the stream's stale copy of it), and neither is the blob.
 TEST(DetectionTracking, AWeakPeakOnAFastBallsCourseContinuesIt) {
-  const FieldMm rest{-2250, 0};
+  const FieldMm rest{2000, 0};
   constexpr ColorRef kWashed{160, 140, 80};  // no class's, nor clearly the ball's hue
   constexpr ColorRef kGray{112, 120, 112};   // nor a streak's, nor the carpet's
   kickedBall(

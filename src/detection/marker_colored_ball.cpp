@@ -17,18 +17,6 @@ constexpr double kRingMm = (RobotPatternGeometry::kCenterBlobRadius + RobotPatte
                             RobotPatternGeometry::kSideBlobRadius) /
                            2;
 constexpr int kRingSamples = 24;
-}  // namespace
-
-bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
-  if (judge_.isBall(rgb)) return true;
-  const ClippedColor seen(rgb);
-  if (seen.saturated()) return false;
-  const float d = seen.distance(f_.color[k_]);
-  const float reach = classReach(f_.spread[k_]);
-  return d <= reach && d < seen.distance(f_.color[kField]);
-}
-
-namespace {
 // The ball's color as ever more light clips it: its channels scaled by `t`
 // from where the brightest reaches the sensor's top, each capped there. A
 // camera clips before its gamma, and a gamma scales every unclipped channel
@@ -44,6 +32,15 @@ ColorVec clippedBy(const ColorVec& color, float t) {
 constexpr float kClipStep = 1.1f;
 }  // namespace
 
+bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
+  if (judge_.isBall(rgb)) return true;
+  const ClippedColor seen(rgb);
+  if (seen.saturated()) return false;
+  const float d = seen.distance(f_.color[k_]);
+  const float reach = classReach(f_.spread[k_]);
+  return d <= reach && d < seen.distance(f_.color[kField]);
+}
+
 bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
@@ -52,7 +49,7 @@ bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) co
   // the ring shows, with the ball's own as the light clips it: from orange
   // through a pale yellow whose blue the cast and gamma set, not the
   // yellow centers' (a sun patch's clipped balls read 20..47 from those and
-  // 1..7 from this path).
+  // 0.6..7.3 from this path).
   const ColorVec& orange = f_.color[kOrange];
   const float dimmest = std::max(1.f, std::min({orange.c[0], orange.c[1], orange.c[2]}));
   const float last = std::max({orange.c[0], orange.c[1], orange.c[2]}) / dimmest;
