@@ -209,6 +209,32 @@ TEST(SceneRandomVenue, ATeamClippedInEveryCenterStillSplitsFromTheUnseen) {
   EXPECT_EQ(s.precision(), 1.0);
 }
 
+// Extreme venue #640: under a warm cast (1.58, 0.98, 0.62) at exposure 1.3
+// every lemon center clips, (251, 254, 165), and the lines clip with
+// them: they read (229, 237, 222), as blue over green as the gray sky-blue
+// centers (144, 163, 151) the probe found. The unseen team's check against
+// the lines' cast failed: the blue team lost. Where the seen team clipped
+// in every center, its own color is the reference (learnUnseenTeam).
+TEST(SceneRandomVenue, WhereTheLinesClipTheSeenTeamTellsTheUnseenOne) {
+  const SceneScore s = venueScore({640, -2577, -1490, {243, 90, 175}, {64, 181, 114}, {243, 219, 58}, {81, 154, 226},
+                                   {250, 105, 20}, {1.58, 0.98, 0.62}, 0.45, 1.36, 1.30, 1.38, 2.89, 0});
+  EXPECT_GE(s.recall(), 15.0 / 16);
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
+// Moderate venue #329: a sun patch (2.13) over the ball under a cold cast
+// lights it to (245, 186, 137) among darker carpet peaks, and the hypothesis
+// search made a yellow robot of them, read as id 8, with a real yellow 8
+// elsewhere in the frame: no ball, a false robot. One robot per team and id
+// in a frame: the less sure goes, and its blobs to the ball (dropSecondIds).
+TEST(SceneRandomVenue, ASecondRobotOfOneIdIsDroppedAndItsBallFound) {
+  const SceneScore s = venueScore({329, -2241, 2240, {235, 59, 166}, {87, 189, 97}, {241, 236, 76}, {83, 158, 229},
+                                   {242, 76, 20}, {0.85, 0.92, 1.51}, 0.70, 0.99, 0.87, 1.95, -0.12, 2.13});
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.ballRecall(), 1.0);
+}
+
 // Extreme venue #470 (moderate #470 at exposure 1.19 and uneven light
 // 2.5): the probe found the gray sky-blue centers' full patterns, but two
 // first-pass robots with centers of neither team's color, brown (129, 120,
@@ -234,6 +260,31 @@ TEST(SceneRandomVenue, ABallClippedInTheSunKeepsItsOwnPaleYellow) {
   EXPECT_EQ(s.ballRecall(), 1.0);
   EXPECT_EQ(s.ballPrecision(), 1.0);
   EXPECT_EQ(s.recall(), 1.0);
+}
+
+// Extreme venue #690: a sun patch (1.82) over the ball under a warm cast
+// (1.31, 0.99, 0.96) clips its red, but the blob's mean, blurred with the
+// carpet, reads (236, 177, 99): no channel clipped, 14 from the amber
+// centers, beyond their reach (13), so it was judged by its own color
+// only. Any blob of a marker's color may be the ball's on its clip path
+// mixed with the carpet around it, clipped or not (detector_balls.cpp).
+TEST(SceneRandomVenue, ABallClippedInTheSunBlurredBelowTheTopIsStillTheBall) {
+  const SceneScore s = venueScore({690, -956, 409, {239, 75, 171}, {61, 180, 117}, {246, 194, 31}, {46, 89, 171},
+                                   {254, 116, 20}, {1.31, 0.99, 0.96}, 0.56, 1.32, 0.84, 1.27, 2.61, 1.82});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
+}
+
+// Moderate venue #325: a sun patch (1.91) over the ball under a magenta
+// cast at saturation 0.51 reads (236, 160, 110), 35 from the amber
+// centers. Its path as the light clips it starts from an orange that pale:
+// the reference orange as this camera shows the markers (ColorMap), not
+// the reference itself, whose blue stays far below (marker_colored_ball).
+TEST(SceneRandomVenue, ADesaturatedBallClipsAlongItsOwnPath) {
+  const SceneScore s = venueScore({325, -1064, 2017, {249, 116, 183}, {68, 183, 111}, {250, 168, 3}, {82, 154, 227},
+                                   {246, 89, 20}, {1.10, 0.85, 1.21}, 0.51, 1.51, 1.03, 1.20, 2.68, 1.91});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
 }
 
 // Extreme venue #594 (moderate #594 at exposure 1.25): under the warm

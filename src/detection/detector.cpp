@@ -143,6 +143,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
     if (!have_frame) tracker.clear();
     track(t);
   }
+  dropSecondIds();
   findBalls(t, opt.tracking, out);
 
   for (const auto& r : robots) {

@@ -472,15 +472,15 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     // Within the class's reach (a line's false colors, a mix with the
     // carpet, are not), round and alone (no color of it beyond its rim),
     // and most of what lies around it carpet, not a robot's top.
-    // (An over-exposed blob by its rim, as findBalls judged it, a mix with
-    // the carpet the ring around it shows.)
+    // Its color, or a mix with the carpet the ring around it shows (isRim):
+    // an over-exposed blob's by its unclipped rim, as findBalls judged it,
+    // any other's by its mean, which blur with the carpet may keep below
+    // the clip level though the ball clipped (extreme #690: (236, 177, 99)).
     if (!ballInImage(m.blob, px, r)) continue;
     ColorVec around;
     const bool have_around = colorAroundBall(frame_view, px, r, opt.ball_radius, around);
-    const bool colored = ClippedColor(b.rgb).saturated()
-                             ? b.has_unclipped && (test.isBall(b.unclipped_rgb) ||
-                                                   test.isRim(b.unclipped_rgb, have_around ? &around : nullptr))
-                             : test.isBall(b.rgb);
+    const float* rgb = !ClippedColor(b.rgb).saturated() ? b.rgb : b.has_unclipped ? b.unclipped_rgb : nullptr;
+    const bool colored = rgb && (test.isBall(rgb) || test.isRim(rgb, have_around ? &around : nullptr));
     // On a marking, a thin line's demosaiced false color can lie in a
     // marker's reach with the carpet beside it: there the blob must show a
     // whole ball's round silhouette (which has no color beyond its rim

@@ -145,6 +145,19 @@ void Detector::Impl::dropCentersAloneAtCrossings() {
   dropRobots([&](int i) { return robots[i].n == 1 && atCrossing(blobs[robots[i].blob[0]].at_ball); }, false);
 }
 
+void Detector::Impl::dropSecondIds() {
+  const size_t n = robots.size();
+  second_id.assign(n, 0);
+  auto surer = [&](const Hypothesis& a, const Hypothesis& b) {
+    return a.id_known != b.id_known ? a.id_known : a.confidence > b.confidence;
+  };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      if (robots[i].team == robots[j].team && robots[i].id == robots[j].id)
+        second_id[surer(robots[j], robots[i]) ? i : j] = 1;
+  dropRobots([&](int i) { return second_id[i] != 0; }, false);
+}
+
 void Detector::Impl::dropDotsTakenForCenters() {
   dropRobots(
       [&](int i) {

@@ -245,6 +245,13 @@ struct Detector::Impl {
   // frame shows at the slots.
   void dropCentersAloneAtCrossings();
 
+  // One robot per team and id in a frame: of two, the less sure (a guessed
+  // id before a read one) is wrong, and is dropped, its blobs freed for the
+  // ball (moderate #329: a sun-lit ball among carpet peaks made a second
+  // yellow 8, at 0.19 beside the real one's 0.95, and no ball).
+  void dropSecondIds();
+  std::vector<uint8_t> second_id;  // per robot: another holds its id
+
   // Drops the robots of a center and at most one side blob whose center
   // is nearer this frame's green or pink (learned from the side blobs)
   // than its own team's color: a side dot taken for a center (a robot on

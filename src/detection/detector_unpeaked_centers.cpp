@@ -92,8 +92,14 @@ void Detector::Impl::learnUnseenTeam() {
   robots.resize(n_robots);
   blobs.resize(n_blobs);
   if (!whole) return;
+  // Blue lies above the lines' blue over green, yellow below, under any
+  // cast. Where every center of the seen team clipped, the lines, the
+  // brightest paint, clipped too and tell no cast (extreme #640, lines
+  // (229, 237, 222) by gray sky-blue centers at 0.93): the seen team's
+  // color is the reference then, on the other side under any cast.
   auto blueOverGreen = [](const float* c) { return c[2] / std::max(c[1], 1e-3f); };
-  if ((blueOverGreen(r.mean[1 - seen_label].c) > blueOverGreen(neutral.rgb)) != (unseen == kBlue)) return;
+  const float* reference = seen_unclipped ? neutral.rgb : frame_color[seen].c;
+  if ((blueOverGreen(r.mean[1 - seen_label].c) > blueOverGreen(reference)) != (unseen == kBlue)) return;
   learnClassFrom(unseen, r, 1 - seen_label);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "detection/clipped_color.h"
 #include "detection/frame_blob.h"
@@ -50,13 +51,20 @@ bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) co
   // through a pale yellow whose blue the cast and gamma set, not the
   // yellow centers' (a sun patch's clipped balls read 20..47 from those and
   // 0.6..7.3 from this path).
-  const ColorVec& orange = f_.color[kOrange];
-  const float dimmest = std::max(1.f, std::min({orange.c[0], orange.c[1], orange.c[2]}));
-  const float last = std::max({orange.c[0], orange.c[1], orange.c[2]}) / dimmest;
+  // The path starts from the frame's orange or, where no ball taught it
+  // yet, from the reference orange as this camera shows the markers'
+  // (ColorMap): a desaturating camera pales the ball's blue up too.
+  auto alongClipPath = [&](const ColorVec& carpet, const ColorVec& orange) {
+    const float dimmest = std::max(1.f, std::min({orange.c[0], orange.c[1], orange.c[2]}));
+    const float last = std::max({orange.c[0], orange.c[1], orange.c[2]}) / dimmest;
+    float d = std::numeric_limits<float>::max();
+    for (float t = 1; t < last; t *= kClipStep) d = std::min(d, streakColorDistance(seen, carpet, clippedBy(orange, t)));
+    return d;
+  };
   auto mixWith = [&](const ColorVec& carpet, bool clip_path) {
     float d = streakColorDistance(seen, carpet, f_.color[k_]);
-    for (float t = 1; clip_path && t < last; t *= kClipStep)
-      d = std::min(d, streakColorDistance(seen, carpet, clippedBy(orange, t)));
+    if (clip_path) d = std::min(d, alongClipPath(carpet, f_.color[kOrange]));
+    if (clip_path && f_.mapped_orange) d = std::min(d, alongClipPath(carpet, *f_.mapped_orange));
     return d <= reach && d < seen.distance(carpet);
   };
   return mixWith(f_.color[kField], false) || (around && mixWith(*around, true));

@@ -23,9 +23,10 @@ class MarkerColoredBallTest final : public BallColorTest {
   MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class)
       : f_(frame), judge_(judge), k_(marker_class) {}
   bool isBall(const float rgb[3]) const override;
-  // An over-exposed ball's unclipped rim (unclippedDiscColor): the marker's
-  // color, or the ball's own as more light clips it, mixed with the carpet
-  // around it, within the class's reach. That
+  // A ball's color mixed with the carpet around it (an over-exposed ball's
+  // unclipped rim, unclippedDiscColor, or a blob's mean): the marker's
+  // color, or the ball's own as more light clips it, within the class's
+  // reach. That
   // carpet is the field class's color or, where given, `around` (the ring's,
   // colorAroundBall): the sun patch that clips the ball lights the carpet
   // too, and under a neutral camera at 2.5 times the light the lit carpet's
