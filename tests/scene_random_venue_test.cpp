@@ -235,6 +235,20 @@ TEST(SceneRandomVenue, ASecondRobotOfOneIdIsDroppedAndItsBallFound) {
   EXPECT_EQ(s.ballRecall(), 1.0);
 }
 
+// Extreme venue #759: under tungsten (1.55, 1.02, 0.66) at saturation 1.23
+// the sky-blue centers read (176, 224, 203) and did peak, but with the blue
+// team unseen its class was the reference, the centers were dropped as
+// implausible, and the probe for the unseen team took only centers that
+// made no blob: the blue team lost. A peaked center no robot holds is
+// probed as an unpeaked one (detector_unpeaked_centers.cpp).
+TEST(SceneRandomVenue, ACenterThatPeakedButNoClassPlacedIsProbed) {
+  const SceneScore s = venueScore({759, -3597, -1564, {242, 89, 175}, {81, 187, 102}, {240, 238, 78}, {89, 169, 239},
+                                   {246, 91, 20}, {1.55, 1.02, 0.66}, 1.23, 0.91, 1.26, 1.90, -2.41, 0});
+  EXPECT_GE(s.recall(), 15.0 / 16);
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 // Extreme venue #470 (moderate #470 at exposure 1.19 and uneven light
 // 2.5): the probe found the gray sky-blue centers' full patterns, but two
 // first-pass robots with centers of neither team's color, brown (129, 120,

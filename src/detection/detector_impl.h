@@ -162,10 +162,11 @@ struct Detector::Impl {
   // channels (sky blue in a sun patch, (150, 255, 255) beside lines of
   // (160, 220, 255)) is as little saturated as a line crossing. Where free
   // side blobs (min_side_blobs of them) fit the pattern tightly
-  // (min_weak_fit) around a place where no blob peaked, the center's color
-  // is read from the frame there: as bright as a marker and team-colored
-  // (teamColored; teamOfFullPattern with four sides), it is the robot, its
-  // center appended to `blobs`.
+  // (min_weak_fit) around a place where no blob peaked or only one no
+  // robot holds, the center's color is read from the frame there: as bright
+  // as a marker and team-colored (teamColored; teamOfFullPattern with four
+  // sides), it is the robot, its center that blob or one appended to
+  // `blobs`.
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
   // Where the searches found one team only, the other may be there with

@@ -88,7 +88,7 @@ void Detector::Impl::learnUnseenTeam() {
     r = oneClass(samples.data(), static_cast<int>(samples.size()), teams, 1 - seen_label, labels.data());
   }
   for (size_t i = n_robots; i < robots.size(); ++i)
-    for (int b = 1; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
+    for (int b = 0; b < robots[i].n; ++b) blobs[robots[i].blob[b]].robot = -1;
   robots.resize(n_robots);
   blobs.resize(n_blobs);
   if (!whole) return;
@@ -140,11 +140,14 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
         }
     }
     if (best.rank <= 0) continue;
-    const FrameBlob center = centerBlobAt(best.pose.position, best_rgb);
-    // The blob list's reserve bounds it (no allocation per frame).
-    if (!center.valid || blobs.size() == blobs.capacity()) continue;
-    blobs.push_back(center);
-    best.blob[0] = static_cast<int>(blobs.size()) - 1, best.slot[0] = 0;
+    if (best.blob[0] < 0) {
+      const FrameBlob center = centerBlobAt(best.pose.position, best_rgb);
+      // The blob list's reserve bounds it (no allocation per frame).
+      if (!center.valid || blobs.size() == blobs.capacity()) continue;
+      blobs.push_back(center);
+      best.blob[0] = static_cast<int>(blobs.size()) - 1;
+    }
+    best.slot[0] = 0;
     for (int i = 0; i < best.n; ++i) blobs[best.blob[i]].robot = static_cast<int>(robots.size());
     robots.push_back(best);
     ++added;
@@ -186,9 +189,19 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
   if (h.n - 1 < opt.min_side_blobs) return false;
   h.pose = fitPattern(pts, slot, h.n - 1, tol);
   if (h.pose.score < opt.min_weak_fit || overlapsAccepted(h.pose)) return false;
-  // A center that peaked is the first search's to judge.
-  for (const auto& hit : index.within(h.pose.position, RobotPatternGeometry::kCenterBlobRadius))
-    if (blobs[hit.first].valid) return false;
+  // A center that peaked is the first search's to judge, unless no robot
+  // holds it: then no class the searches knew placed it (extreme #759:
+  // sky-blue centers under tungsten at saturation 1.23 read (176, 224,
+  // 203), nearer the carpet or lines than blue's reference while blue was
+  // unseen, and were dropped as implausible). It is read as an unpeaked
+  // one is, and is the robot's center blob (h.blob[0]; -1: none peaked).
+  h.blob[0] = -1;
+  for (const auto& hit : index.within(h.pose.position, RobotPatternGeometry::kCenterBlobRadius)) {
+    const FrameBlob& c = blobs[hit.first];
+    if (!c.valid) continue;
+    if (h.blob[0] >= 0 || c.weak || c.streak || c.robot >= 0) return false;
+    h.blob[0] = static_cast<int>(hit.first);
+  }
   const SeenColor seen = seenDiscColor(frame_view, camera, {h.pose.position.x, h.pose.position.y, ref_height},
                                        opt.probe_radius);
   if (seen.share < opt.min_probe_share) return false;
