@@ -170,15 +170,16 @@ struct Detector::Impl {
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
   // Where the searches found one team only, the other may be there with
-  // centers that made no blob and that no class places (sky blue under a
-  // warm cast at saturation 0.5 reads as gray as the lines). The full
-  // patterns around such unclipped centers are probed (probing_unseen_team:
+  // centers that no class places (sky blue under a warm cast at saturation
+  // 0.5 reads as gray as the lines). The full patterns around such
+  // unclipped centers are probed (probing_unseen_team:
   // robotsAroundUnpeakedCenters takes them without a team, and they are
   // undone after). Where the centers split in two (clusterCenters from the
   // unclipped ones), the probed ones all in one cluster, most of the seen
   // team's in the other, and the probed cluster on the unseen team's side
-  // of the lines' white (as orderByRatio), that cluster is this frame's
-  // color of the unseen team.
+  // of the lines' white (as orderByRatio; of the seen team's color where
+  // every one of its centers clipped), that cluster is this frame's color
+  // of the unseen team.
   void learnUnseenTeam();
   bool probing_unseen_team = false;
   // Side blobs a (slot sa) and b (slot sb) with the free blobs partner[0, k)

@@ -58,7 +58,8 @@ bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) co
     const float dimmest = std::max(1.f, std::min({orange.c[0], orange.c[1], orange.c[2]}));
     const float last = std::max({orange.c[0], orange.c[1], orange.c[2]}) / dimmest;
     float d = std::numeric_limits<float>::max();
-    for (float t = 1; t < last; t *= kClipStep) d = std::min(d, streakColorDistance(seen, carpet, clippedBy(orange, t)));
+    for (float t = 1; t < last; t *= kClipStep)
+      d = std::min(d, streakColorDistance(seen, carpet, clippedBy(orange, t)));
     return d;
   };
   auto mixWith = [&](const ColorVec& carpet, bool clip_path) {

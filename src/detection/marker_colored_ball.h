@@ -26,12 +26,12 @@ class MarkerColoredBallTest final : public BallColorTest {
   // A ball's color mixed with the carpet around it (an over-exposed ball's
   // unclipped rim, unclippedDiscColor, or a blob's mean): the marker's
   // color, or the ball's own as more light clips it, within the class's
-  // reach. That
-  // carpet is the field class's color or, where given, `around` (the ring's,
-  // colorAroundBall): the sun patch that clips the ball lights the carpet
-  // too, and under a neutral camera at 2.5 times the light the lit carpet's
-  // chromaticity moved off the field class's (a rim of (219, 210, 59) lay
-  // 14 from yellow, beyond its reach, and off the mix with the field class).
+  // reach. That carpet is the field class's color or, where given,
+  // `around` (the ring's, colorAroundBall): the sun patch that clips the
+  // ball lights the carpet too, and under a neutral camera at 2.5 times the
+  // light the lit carpet's chromaticity moved off the field class's (a rim
+  // of (219, 210, 59) lay 14 from yellow, beyond its reach, and off the mix
+  // with the field class).
   bool isRim(const float rgb[3], const ColorVec* around = nullptr) const;
   bool isCarpet(const float rgb[3]) const override { return judge_.isCarpet(rgb); }
 
