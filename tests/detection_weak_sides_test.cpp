@@ -7,6 +7,7 @@
 
 #include "detection/detector.h"
 #include "detection/pattern_fit.h"
+#include "detection/weak_sides.h"
 #include "detection_test_scene.h"
 #include "geometry/field_model.h"
 
@@ -171,6 +172,68 @@ TEST(DetectionWeakSides, UnclearWeakColorLeavesTheIdOpen) {
     }
     ASSERT_NE(found, nullptr);
     EXPECT_EQ(found->id, r.id);
+  }
+}
+
+// A dot's channel at the clip level says only "at least this much": a pale
+// pink dot clipped in red (moderate venue #897, (242, 237, 227)) is
+// plainly nearer to a robot's green than to the frame's pink, yet with its
+// red free to grow it is pink. Just below the clip level, the same hue is
+// green; clipped in two channels, it fits nearly any hue and is judged as
+// seen.
+TEST(DetectionWeakSides, ADotClippedInOneChannelIsJudgedByWhatItMayHaveBeen) {
+  const ColorVec green = colorFeature(203, 249, 204), pink = colorFeature(190, 115, 123);
+  const float margin = static_cast<float>(DetectorOptions{}.weak_color_margin);
+  MarkerColor nearer;
+  const float clipped_red[3] = {242, 237, 227};
+  EXPECT_EQ(sideColorOfDot(clipped_red, green, pink, margin, nearer), 1);
+  EXPECT_EQ(nearer, MarkerColor::Pink);
+  const float unclipped[3] = {230, 237 * 230 / 242.f, 227 * 230 / 242.f};
+  EXPECT_EQ(sideColorOfDot(unclipped, green, pink, margin, nearer), 0);
+  const float two_clipped[3] = {242, 241, 227};
+  EXPECT_EQ(sideColorOfDot(two_clipped, green, pink, margin, nearer),
+            weakSideColor(colorFeature(242, 241, 227), green, pink, margin));
+}
+
+// A pale dot whose chroma washed out may peak only as a fast ball's streak
+// (extreme venue #420). Its weak copy stands in for it where a pattern
+// predicts a side: a center with a diagonal pair of side blobs, which fits
+// two placements, gets its pose from it; without it, no robot. A streak
+// is still never a center: a second pattern around one is none.
+TEST(DetectionWeakSides, AStreakStandsInForADot) {
+  const CameraModel cam(test::topDownCamera());
+  TrueRobot r{Team::Blue, 5, {1500, 300}, -0.58};
+  r.present = {true, true, false, true, false};  // FL and BR: a diagonal pair
+  TrueRobot streak_center{Team::Yellow, 8, {2400, -600}, 1.1};
+  streak_center.present = {false, true, true, true, true};
+  for (bool with_streak : {true, false}) {
+    SceneBuilder s(cam, 3);
+    s.addRobot(r);
+    s.addRobot(streak_center);
+    s.addBlob({streak_center.position.x, streak_center.position.y, 140}, SceneBuilder::kYellow, 1.0f);
+    s.list.blobs.back().streak = true;
+    if (with_streak) {
+      const FieldMm o = RobotPatternGeometry::kSideBlobs[kBackLeft];
+      const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
+      s.addBlob({r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height},
+                SceneBuilder::kPink, 0.9f);
+      s.list.blobs.back().streak = true;
+    }
+    DetectorOptions opt;
+    opt.tracking = false;
+    Detector det(cam, FieldModel::divisionB(), opt);
+    Detections out;
+    det.process(s.list, 0, out);
+    SCOPED_TRACE(with_streak ? "the back-left dot a streak" : "no back-left dot");
+    EXPECT_EQ(robotAt(out, streak_center.position), nullptr);
+    const RobotDetection* found = robotAt(out, r.position);
+    if (!with_streak) {
+      EXPECT_EQ(found, nullptr);
+      continue;
+    }
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(found->team, r.team);
+    EXPECT_NEAR(wrapAngle(found->orientation - r.orientation), 0, 0.05);
   }
 }
 

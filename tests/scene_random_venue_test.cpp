@@ -318,5 +318,31 @@ TEST(SceneRandomVenue, ABallOnlyJustOrangeAloneOnTheCarpetIsOneADotOnATopIsNot) 
   EXPECT_EQ(s.recall(), 1.0);
 }
 
+// Moderate venue #897: a sun patch (2.08) under a warm cast washes the
+// pink dots of blue 3 toward white. One peaked weakly at (242, 237, 227),
+// plainly nearer to the robot's green than to the frame's pink, and that
+// label vetoed the four dots read from the frame, which split right: id 8
+// for 3. Its red is clipped, so it may be redder than it shows, as a pink
+// is: judged by what it may have been, it is pink (weak_sides.cpp).
+TEST(SceneRandomVenue, AWeakDotClippedInRedMayBePink) {
+  const SceneScore s = venueScore({897, -2476, 1600, {249, 114, 182}, {49, 176, 125}, {241, 234, 74}, {61, 116, 194},
+                                   {251, 107, 20}, {1.56, 0.82, 0.65}, 0.65, 0.87, 1.10, 1.10, -2.19, 2.08});
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
+// Extreme venue #576: over-exposed (1.34) at gamma 0.6, blue 4's pink dots
+// made no peak and a dark weak peak on its top, (73, 78, 94), half as
+// bright as the center, took a slot: the pose turned by 56 degrees and
+// the frame read the id at the wrong places (3 for 4). A peak is a marker
+// only nearer, in the ratio of brightnesses, to its center than to the
+// robot's top, however bright the center (hypothesis_search.cpp).
+TEST(SceneRandomVenue, APeakNearerTheTopThanTheCenterIsNoDot) {
+  const SceneScore s = venueScore({576, -1721, 1381, {250, 120, 184}, {119, 200, 73}, {247, 190, 26}, {32, 62, 148},
+                                   {245, 86, 20}, {0.91, 1.04, 1.44}, 0.84, 0.60, 1.34, 1.76, 2.57, 2.14});
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

@@ -132,15 +132,16 @@ Hypothesis HypothesisSearch::bestAt(int c) {
 }
 
 bool HypothesisSearch::darkerThanMarker(int i, int c) {
-  if (brightness(i) >= kTopBrightness * brightness(c)) return false;
-  if (!opt_.probe_missing_sides || !in_.frame.image) return true;
+  if (brightness(i) >= brightness(c)) return false;
+  const bool below_share = brightness(i) < kTopBrightness * brightness(c);
+  if (!opt_.probe_missing_sides || !in_.frame.image) return below_share;
   if (top_of_ != c) {  // read once per center, only where a peak needs it
     top_of_ = c;
     const FieldMm cp = blobAt(c).at_ref;
     const auto top = ringDarkest(in_.frame, camera_, {cp.x, cp.y, ref_height_});
     top_floor_ = top ? std::sqrt(std::max(*top, 1.f) * brightness(c)) : -1;
   }
-  return !(top_floor_ >= 0 && brightness(i) >= top_floor_);
+  return top_floor_ >= 0 ? brightness(i) < top_floor_ : below_share;
 }
 
 FitTolerance HypothesisSearch::fitToleranceAt(const FieldMm& p) const {

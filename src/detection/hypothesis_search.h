@@ -57,14 +57,16 @@ class HypothesisSearch {
   Hypothesis bestAt(int c);
   const FrameBlob& blobAt(int i) const { return (*in_.blobs)[i]; }
   float brightness(int i) const { return blobAt(i).brightness(); }
-  // Whether peak i is too dark to be a marker of center c: below
-  // kTopBrightness of the center's brightness and, where the frame shows
-  // the robot's top along the side-dot ring (its darkest point), nearer
-  // to the top than to the center in the ratio of brightnesses (below
-  // their geometric mean). A gamma raises every brightness to a power,
-  // which keeps that midpoint in place: under gamma 1.6 a teal dot reads a
-  // third of an amber center and sixteen times the black top; a dark
-  // ringing peak on the top stays nearer the top.
+  // Whether peak i is too dark to be a marker of center c: darker than
+  // the center and, where the frame shows the robot's top along the
+  // side-dot ring (its darkest point), nearer to the top than to the
+  // center in the ratio of brightnesses (below their geometric mean);
+  // where it does not, below kTopBrightness of the center. A gamma raises
+  // every brightness to a power, which keeps that midpoint in place: under
+  // gamma 1.6 a teal dot reads a third of an amber center and sixteen
+  // times the black top; a dark ringing peak on the top stays nearer the
+  // top, and so does a brown patch of it lit under tungsten, half as
+  // bright as a pale blue center.
   bool darkerThanMarker(int i, int c);
 
   // Whether the camera sees any part of `area` stretched enough for

@@ -10,8 +10,8 @@ namespace dv {
 
 // For every robot of `robots` not seen whole (Hypothesis::seen_sides), the
 // first id left after its fully seen teammates' (the missing blobs taken as
-// green before pink), written to colors and id; id_known where exactly one
-// is left. A robot seen whole gets id_known.
+// their colors guess them before the other color), written to colors and
+// id; id_known where exactly one is left. A robot seen whole gets id_known.
 void resolvePartialIds(std::vector<Hypothesis>& robots);
 
 }  // namespace dv

@@ -1,5 +1,7 @@
 #include "detection/robot_identity.h"
 
+#include <algorithm>
+
 #include "detection/clipped_color.h"
 #include "detection/weak_sides.h"
 
@@ -38,6 +40,7 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   // Each slot read once, its blob's too: the four dots compared under the
   // light they share, by the same reading.
   ColorVec dot[4];
+  float dot_rgb[4][3];
   bool read[4] = {false, false, false, false};
   bool clipped[4] = {false, false, false, false};  // in two channels or more
   int n_read = 0;
@@ -46,6 +49,7 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     const SeenColor seen = seenDiscColor(c.frame, *c.camera, {p.x, p.y, z}, c.opt->probe_radius);
     if (seen.share < c.opt->min_probe_share) continue;
     dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
+    std::copy(seen.rgb, seen.rgb + 3, dot_rgb[s - 1]);
     clipped[s - 1] = ClippedColor(seen.rgb).saturated();
     read[s - 1] = true;
     ++n_read;
@@ -74,9 +78,10 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   }
   for (int s = 0; s < 4; ++s) {
     if (!read[s] || (r.seen_sides >> s & 1)) continue;
-    const int label = weakSideColor(dot[s], green, pink, static_cast<float>(c.opt->weak_color_margin));
+    MarkerColor nearer;
+    const int label = sideColorOfDot(dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), nearer);
     if (label < 0) continue;
-    colors[s] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    colors[s] = nearer;
     r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
 }
@@ -118,7 +123,7 @@ void identifyRobot(Hypothesis& r, const IdentityContext& c) {
   dv::orderByRatio(res, lab, m, 0, 1, nullptr);
   if (res.separated) oneClassIfWithinItsReach(res, lab, m, local, c);
   std::array<MarkerColor, 4> colors;
-  colors.fill(MarkerColor::Green);  // a missing side blob is guessed green
+  colors.fill(MarkerColor::Green);  // a side nothing shows is guessed green
   r.seen_sides = 0;
   for (int i = 0; i < m; ++i) {
     const int slot = r.slot[side_of[i]];
@@ -129,10 +134,11 @@ void identifyRobot(Hypothesis& r, const IdentityContext& c) {
   const ColorVec pink = res.count[1] > 0 ? res.mean[1] : c.pink;
   for (int i = 1; i < r.n; ++i) {
     if (!blobs[r.blob[i]].weak) continue;
-    const int label = weakSideColor(blobs[r.blob[i]].color, green, pink,
-                                    static_cast<float>(c.opt->weak_color_margin));
+    MarkerColor nearer;
+    const int label = sideColorOfDot(blobs[r.blob[i]].rgb, green, pink, static_cast<float>(c.opt->weak_color_margin),
+                                     nearer);
     if (label < 0) continue;
-    colors[r.slot[i] - 1] = label == 0 ? MarkerColor::Green : MarkerColor::Pink;
+    colors[r.slot[i] - 1] = nearer;
     r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
   }
   if (r.seen_sides != 0xF) probeMissingSides(r, c, green, pink, colors);

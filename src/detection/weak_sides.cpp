@@ -28,11 +28,27 @@ int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, con
   return n;
 }
 
-int weakSideColor(const ColorVec& color, const ColorVec& green, const ColorVec& pink, float margin) {
-  const float dg = colorDistance(color, green), dp = colorDistance(color, pink);
+namespace {
+int clearlyNearer(float dg, float dp, float margin) {
   if (dg < margin * dp) return 0;
   if (dp < margin * dg) return 1;
   return -1;
+}
+}  // namespace
+
+int weakSideColor(const ColorVec& color, const ColorVec& green, const ColorVec& pink, float margin) {
+  return clearlyNearer(colorDistance(color, green), colorDistance(color, pink), margin);
+}
+
+int sideColorOfDot(const float rgb[3], const ColorVec& green, const ColorVec& pink, float margin,
+                   MarkerColor& nearer) {
+  const ClippedColor seen(rgb);
+  const ColorVec plain = colorFeature(rgb[0], rgb[1], rgb[2]);
+  // Two clipped channels fit nearly any hue: only what was seen counts.
+  const float dg = seen.saturated() ? colorDistance(plain, green) : seen.distance(green);
+  const float dp = seen.saturated() ? colorDistance(plain, pink) : seen.distance(pink);
+  nearer = dg <= dp ? MarkerColor::Green : MarkerColor::Pink;
+  return clearlyNearer(dg, dp, margin);
 }
 
 }  // namespace dv

@@ -9,8 +9,10 @@
 // frame's color classes, and its color decides a side's marker only when it
 // is clearly nearer to one of the two side colors.
 #include "detection/blob_index.h"
+#include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
+#include "geometry/robot_pattern.h"
 
 namespace dv {
 
@@ -27,5 +29,12 @@ int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, con
 // `pink`), or -1 when it is not clearly nearer to one of them: its distance
 // to the nearer must stay below `margin` times its distance to the other.
 int weakSideColor(const ColorVec& color, const ColorVec& green, const ColorVec& pink, float margin);
+
+// As weakSideColor for a dot seen as `rgb` (0..255), a clipped channel free
+// to grow (clipped_color.h: a pink dot clipped in red is redder than it
+// shows). `nearer` gets the nearer of the two either way: where the dot is
+// clearly nearer to neither, it is still the better guess than a fixed one.
+int sideColorOfDot(const float rgb[3], const ColorVec& green, const ColorVec& pink, float margin,
+                   MarkerColor& nearer);
 
 }  // namespace dv
