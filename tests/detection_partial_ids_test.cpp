@@ -37,13 +37,19 @@ TEST(PartialIds, ATeammateHoldingTheOtherIdTellsIt) {
     }
 }
 
-TEST(PartialIds, TwoFreeIdsLeaveAGuessGreenFirst) {
-  // Side 0 of id 9 is pink (all four are); the guess takes it as green.
-  std::vector<Hypothesis> robots = {seen(Team::Yellow, 9, 0xE), seen(Team::Blue, flipped(9, 0))};
-  resolvePartialIds(robots);
-  EXPECT_FALSE(robots[0].id_known) << "the other team's ids rule nothing out";
-  EXPECT_EQ(robots[0].colors[0], MarkerColor::Green);
-  EXPECT_EQ(robots[0].id, flipped(9, 0));
+// Two ids left: the guess is the color the robot's colors hold at the
+// missing side (the nearer of its green and pink where the frame showed
+// something there, identifyRobot; green where it showed nothing).
+TEST(PartialIds, TwoFreeIdsLeaveTheGuessedColor) {
+  for (MarkerColor guess : {MarkerColor::Green, MarkerColor::Pink}) {
+    // Side 0 of id 9 is pink (all four are).
+    std::vector<Hypothesis> robots = {seen(Team::Yellow, 9, 0xE), seen(Team::Blue, flipped(9, 0))};
+    robots[0].colors[0] = guess;
+    resolvePartialIds(robots);
+    EXPECT_FALSE(robots[0].id_known) << "the other team's ids rule nothing out";
+    EXPECT_EQ(robots[0].colors[0], guess);
+    EXPECT_EQ(robots[0].id, guess == MarkerColor::Pink ? 9 : flipped(9, 0));
+  }
 }
 
 TEST(PartialIds, AtTheBorderThreeTakenOfFourLeaveOne) {

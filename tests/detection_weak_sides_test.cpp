@@ -175,6 +175,45 @@ TEST(DetectionWeakSides, UnclearWeakColorLeavesTheIdOpen) {
   }
 }
 
+// A weak side whose color is clearly neither green nor pink leaves the id
+// a guess, but the guess follows the nearer of the two, not a fixed green
+// (extreme venue #761: a pink dot washed near white beside three greens,
+// id 8 for 2).
+TEST(DetectionWeakSides, AnUnclearWeakColorLeansTheGuess) {
+  const CameraModel cam(test::topDownCamera());
+  TrueRobot r{Team::Yellow, 0, {1800, 300}, 0.9};  // FL pink
+  r.present = {true, false, true, true, true};
+  const FieldMm o = RobotPatternGeometry::kSideBlobs[kFrontLeft];
+  const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
+  const FieldPoint fl{r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height};
+  const ColorRef g = SceneBuilder::kGreen, p = SceneBuilder::kPink;
+  for (double toward_pink : {0.38, 0.45}) {
+    auto mix = [&](int a, int b) { return static_cast<int>(std::lround(a + toward_pink * (b - a))); };
+    const ColorRef dot{mix(g.r, p.r), mix(g.g, p.g), mix(g.b, p.b)};
+    SCOPED_TRACE("dot " + std::to_string(dot.r) + " " + std::to_string(dot.g) + " " + std::to_string(dot.b));
+    for (bool guesses : {false, true}) {
+      SceneBuilder s(cam, 3);
+      s.addRobot(r);
+      s.addBlob(fl, dot, 0.18f, true);
+      DetectorOptions opt;
+      opt.tracking = false;
+      opt.report_guessed_ids = guesses;
+      Detector det(cam, FieldModel::divisionB(), opt);
+      Detections out;
+      det.process(s.list, 0, out);
+      const RobotDetection* found = robotAt(out, r.position);
+      if (!guesses) {
+        EXPECT_EQ(found, nullptr) << "the dot's color is unclear";
+        continue;
+      }
+      ASSERT_NE(found, nullptr);
+      auto colors = patternColors(r.id);
+      colors[kFrontLeft] = toward_pink > 0.42 ? MarkerColor::Pink : MarkerColor::Green;
+      EXPECT_EQ(found->id, patternId(colors));
+    }
+  }
+}
+
 // A dot's channel at the clip level says only "at least this much": a pale
 // pink dot clipped in red (moderate venue #897, (242, 237, 227)) is
 // plainly nearer to a robot's green than to the frame's pink, yet with its

@@ -78,10 +78,8 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   }
   for (int s = 0; s < 4; ++s) {
     if (!read[s] || (r.seen_sides >> s & 1)) continue;
-    MarkerColor nearer;
-    const int label = sideColorOfDot(dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), nearer);
+    const int label = sideColorOfDot(dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
     if (label < 0) continue;
-    colors[s] = nearer;
     r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
 }
@@ -134,11 +132,9 @@ void identifyRobot(Hypothesis& r, const IdentityContext& c) {
   const ColorVec pink = res.count[1] > 0 ? res.mean[1] : c.pink;
   for (int i = 1; i < r.n; ++i) {
     if (!blobs[r.blob[i]].weak) continue;
-    MarkerColor nearer;
     const int label = sideColorOfDot(blobs[r.blob[i]].rgb, green, pink, static_cast<float>(c.opt->weak_color_margin),
-                                     nearer);
+                                     colors[r.slot[i] - 1]);
     if (label < 0) continue;
-    colors[r.slot[i] - 1] = nearer;
     r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));
   }
   if (r.seen_sides != 0xF) probeMissingSides(r, c, green, pink, colors);
