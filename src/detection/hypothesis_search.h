@@ -170,8 +170,15 @@ class HypothesisSearch {
   template <class Fn>
   void forSideBlobPairs(int c, const int* nbr, int k, Fn&& fn) const;
 
-  int top_of_ = -1;      // the center whose top floor top_floor_ holds
-  float top_floor_ = -1;  // geometric mean of its brightness and its ring's darkest (-1: none)
+  // The center whose top floors these hold: the geometric mean of its
+  // brightness and its ring's darkest, read first at three points 120
+  // degrees apart (a floor no lower than the whole ring's: most peaks
+  // clear it, and the whole ring costs as much as the rest of the
+  // detector's search), then, where a peak lies below that, on the whole
+  // ring (-1: none; -2: not read yet).
+  static constexpr int kCoarseRingStride = 24;
+  int top_of_ = -1;
+  float coarse_top_floor_ = -1, top_floor_ = -1;
 
   static constexpr int kMaxNeighbors = 10;        // side blob candidates per center
   static constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs
