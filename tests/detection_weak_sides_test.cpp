@@ -141,29 +141,34 @@ TEST(DetectionWeakSides, WeakPeaksAloneAreNoRobotAndNoBall) {
   EXPECT_TRUE(out.balls.empty());
 }
 
+// Robot `r`, its front-left side absent, with a weak peak of `color` there.
+Detections withWeakFrontLeft(const TrueRobot& r, const ColorRef& color, bool report_guessed_ids) {
+  const CameraModel cam(test::topDownCamera());
+  const FieldMm o = RobotPatternGeometry::kSideBlobs[kFrontLeft];
+  const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
+  SceneBuilder s(cam, 3);
+  s.addRobot(r);
+  s.addBlob({r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height}, color, 0.18f, true);
+  DetectorOptions opt;
+  opt.tracking = false;
+  opt.report_guessed_ids = report_guessed_ids;
+  Detector det(cam, FieldModel::divisionB(), opt);
+  Detections out;
+  det.process(s.list, 0, out);
+  return out;
+}
+
 // A weak side's color decides its marker only when it is clearly one of
 // the two: a color half way between green and pink leaves the id open (not
 // reported without guesses), a pink one gives the id.
 TEST(DetectionWeakSides, UnclearWeakColorLeavesTheIdOpen) {
-  const CameraModel cam(test::topDownCamera());
   TrueRobot r{Team::Yellow, 0, {1800, 300}, 0.9};  // FL pink
   ASSERT_EQ(patternColors(r.id)[kFrontLeft], MarkerColor::Pink);
   r.present = {true, false, true, true, true};
-  const FieldMm o = RobotPatternGeometry::kSideBlobs[kFrontLeft];
-  const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
-  const FieldPoint fl{r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height};
   const ColorRef g = SceneBuilder::kGreen, p = SceneBuilder::kPink;
   const ColorRef mid{(g.r + p.r) / 2, (g.g + p.g) / 2, (g.b + p.b) / 2};
   for (bool clear : {false, true}) {
-    SceneBuilder s(cam, 3);
-    s.addRobot(r);
-    s.addBlob(fl, clear ? p : mid, 0.18f, true);
-    DetectorOptions opt;
-    opt.tracking = false;
-    opt.report_guessed_ids = false;
-    Detector det(cam, FieldModel::divisionB(), opt);
-    Detections out;
-    det.process(s.list, 0, out);
+    const Detections out = withWeakFrontLeft(r, clear ? p : mid, false);
     const RobotDetection* found = robotAt(out, r.position);
     SCOPED_TRACE(clear ? "pink" : "between green and pink");
     if (!clear) {
@@ -175,42 +180,24 @@ TEST(DetectionWeakSides, UnclearWeakColorLeavesTheIdOpen) {
   }
 }
 
-// A weak side whose color is clearly neither green nor pink leaves the id
-// a guess, but the guess follows the nearer of the two, not a fixed green
-// (extreme venue #761: a pink dot washed near white beside three greens,
-// id 8 for 2).
+// Nor does such a color leave the guess a fixed green: the guess follows
+// the nearer of the two (extreme venue #761: a pink dot washed near white
+// beside three greens, id 8 for 2).
 TEST(DetectionWeakSides, AnUnclearWeakColorLeansTheGuess) {
-  const CameraModel cam(test::topDownCamera());
   TrueRobot r{Team::Yellow, 0, {1800, 300}, 0.9};  // FL pink
   r.present = {true, false, true, true, true};
-  const FieldMm o = RobotPatternGeometry::kSideBlobs[kFrontLeft];
-  const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
-  const FieldPoint fl{r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height};
   const ColorRef g = SceneBuilder::kGreen, p = SceneBuilder::kPink;
   for (double toward_pink : {0.38, 0.45}) {
     auto mix = [&](int a, int b) { return static_cast<int>(std::lround(a + toward_pink * (b - a))); };
     const ColorRef dot{mix(g.r, p.r), mix(g.g, p.g), mix(g.b, p.b)};
     SCOPED_TRACE("dot " + std::to_string(dot.r) + " " + std::to_string(dot.g) + " " + std::to_string(dot.b));
-    for (bool guesses : {false, true}) {
-      SceneBuilder s(cam, 3);
-      s.addRobot(r);
-      s.addBlob(fl, dot, 0.18f, true);
-      DetectorOptions opt;
-      opt.tracking = false;
-      opt.report_guessed_ids = guesses;
-      Detector det(cam, FieldModel::divisionB(), opt);
-      Detections out;
-      det.process(s.list, 0, out);
-      const RobotDetection* found = robotAt(out, r.position);
-      if (!guesses) {
-        EXPECT_EQ(found, nullptr) << "the dot's color is unclear";
-        continue;
-      }
-      ASSERT_NE(found, nullptr);
-      auto colors = patternColors(r.id);
-      colors[kFrontLeft] = toward_pink > 0.42 ? MarkerColor::Pink : MarkerColor::Green;
-      EXPECT_EQ(found->id, patternId(colors));
-    }
+    EXPECT_EQ(robotAt(withWeakFrontLeft(r, dot, false), r.position), nullptr) << "the dot's color is unclear";
+    const Detections out = withWeakFrontLeft(r, dot, true);
+    const RobotDetection* found = robotAt(out, r.position);
+    ASSERT_NE(found, nullptr);
+    auto colors = patternColors(r.id);
+    colors[kFrontLeft] = toward_pink > 0.42 ? MarkerColor::Pink : MarkerColor::Green;
+    EXPECT_EQ(found->id, patternId(colors));
   }
 }
 
@@ -224,56 +211,14 @@ TEST(DetectionWeakSides, ADotClippedInOneChannelIsJudgedByWhatItMayHaveBeen) {
   const ColorVec green = colorFeature(203, 249, 204), pink = colorFeature(190, 115, 123);
   const float margin = static_cast<float>(DetectorOptions{}.weak_color_margin);
   MarkerColor nearer;
-  const float clipped_red[3] = {242, 237, 227};
-  EXPECT_EQ(sideColorOfDot(clipped_red, green, pink, margin, nearer), 1);
+  auto side = [&](float r, float g, float b) {
+    const float rgb[3] = {r, g, b};
+    return sideColorOfDot(colorFeature(r, g, b), rgb, green, pink, margin, nearer);
+  };
+  EXPECT_EQ(side(242, 237, 227), 1);
   EXPECT_EQ(nearer, MarkerColor::Pink);
-  const float unclipped[3] = {230, 237 * 230 / 242.f, 227 * 230 / 242.f};
-  EXPECT_EQ(sideColorOfDot(unclipped, green, pink, margin, nearer), 0);
-  const float two_clipped[3] = {242, 241, 227};
-  EXPECT_EQ(sideColorOfDot(two_clipped, green, pink, margin, nearer),
-            weakSideColor(colorFeature(242, 241, 227), green, pink, margin));
-}
-
-// A pale dot whose chroma washed out may peak only as a fast ball's streak
-// (extreme venue #420). Its weak copy stands in for it where a pattern
-// predicts a side: a center with a diagonal pair of side blobs, which fits
-// two placements, gets its pose from it; without it, no robot. A streak
-// is still never a center: a second pattern around one is none.
-TEST(DetectionWeakSides, AStreakStandsInForADot) {
-  const CameraModel cam(test::topDownCamera());
-  TrueRobot r{Team::Blue, 5, {1500, 300}, -0.58};
-  r.present = {true, true, false, true, false};  // FL and BR: a diagonal pair
-  TrueRobot streak_center{Team::Yellow, 8, {2400, -600}, 1.1};
-  streak_center.present = {false, true, true, true, true};
-  for (bool with_streak : {true, false}) {
-    SceneBuilder s(cam, 3);
-    s.addRobot(r);
-    s.addRobot(streak_center);
-    s.addBlob({streak_center.position.x, streak_center.position.y, 140}, SceneBuilder::kYellow, 1.0f);
-    s.list.blobs.back().streak = true;
-    if (with_streak) {
-      const FieldMm o = RobotPatternGeometry::kSideBlobs[kBackLeft];
-      const double cs = std::cos(r.orientation), sn = std::sin(r.orientation);
-      s.addBlob({r.position.x + cs * o.x - sn * o.y, r.position.y + sn * o.x + cs * o.y, r.height},
-                SceneBuilder::kPink, 0.9f);
-      s.list.blobs.back().streak = true;
-    }
-    DetectorOptions opt;
-    opt.tracking = false;
-    Detector det(cam, FieldModel::divisionB(), opt);
-    Detections out;
-    det.process(s.list, 0, out);
-    SCOPED_TRACE(with_streak ? "the back-left dot a streak" : "no back-left dot");
-    EXPECT_EQ(robotAt(out, streak_center.position), nullptr);
-    const RobotDetection* found = robotAt(out, r.position);
-    if (!with_streak) {
-      EXPECT_EQ(found, nullptr);
-      continue;
-    }
-    ASSERT_NE(found, nullptr);
-    EXPECT_EQ(found->team, r.team);
-    EXPECT_NEAR(wrapAngle(found->orientation - r.orientation), 0, 0.05);
-  }
+  EXPECT_EQ(side(230, 237 * 230 / 242.f, 227 * 230 / 242.f), 0);
+  EXPECT_EQ(side(242, 241, 227), weakSideColor(colorFeature(242, 241, 227), green, pink, margin));
 }
 
 // Weak carpet noise all around full patterns changes nothing: every robot

@@ -331,18 +331,5 @@ TEST(SceneRandomVenue, AWeakDotClippedInRedMayBePink) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
-// Extreme venue #576: over-exposed (1.34) at gamma 0.6, blue 4's pink dots
-// made no peak and a dark weak peak on its top, (73, 78, 94), half as
-// bright as the center, took a slot: the pose turned by 56 degrees and
-// the frame read the id at the wrong places (3 for 4). A peak is a marker
-// only nearer, in the ratio of brightnesses, to its center than to the
-// robot's top, however bright the center (hypothesis_search.cpp).
-TEST(SceneRandomVenue, APeakNearerTheTopThanTheCenterIsNoDot) {
-  const SceneScore s = venueScore({576, -1721, 1381, {250, 120, 184}, {119, 200, 73}, {247, 190, 26}, {32, 62, 148},
-                                   {245, 86, 20}, {0.91, 1.04, 1.44}, 0.84, 0.60, 1.34, 1.76, 2.57, 2.14});
-  EXPECT_EQ(s.precision(), 1.0);
-  EXPECT_EQ(s.idAccuracy(), 1.0);
-}
-
 }  // namespace
 }  // namespace dv

@@ -76,18 +76,6 @@ void Detector::Impl::prepare(const BlobList& list) {
     // Invalid blobs and streaks are put far away so that no query finds them.
     (weak ? weak_pts : pts).push_back(f.valid && !f.streak ? f.at_ref : FieldMm{1e12, 1e12});
   }
-  // A streak is a fast ball's candidate, never a robot's blob. A pale dot
-  // whose chroma washed out can peak only as one; a weak copy of it stands
-  // for it, which a pattern takes only in a slot it predicts (never as a
-  // center: it stays a streak).
-  for (size_t i = 0; i < list.blobs.size() && opt.weak_sides; ++i) {
-    if (!blobs[i].streak || !blobs[i].valid) continue;
-    FrameBlob f = blobs[i];
-    f.weak = true;
-    blobs.push_back(f);
-    weak_pts.push_back(f.at_ref);
-    raw_positions.push_back(list.blobs[i].position);
-  }
   index.build();
   if (!weak_pts.empty()) weak_index.build();
 }
@@ -243,8 +231,7 @@ int Detector::Impl::searchAgainWithFrameColors() {
     for (int i = 0; i < h.n && free; ++i) free = blobs[h.blob[i]].robot < 0;
     for (int i = 1; i < h.n; ++i) {
       side_blob = side_blob || sideBlob(h.blob[i]);
-      // (A streak's copy peaked as strongly as a blob.)
-      weak_side = weak_side || (blobs[h.blob[i]].weak && !blobs[h.blob[i]].streak);
+      weak_side = weak_side || blobs[h.blob[i]].weak;
     }
     if (!free || (weak_center && (!side_blob || weak_side))) return;
     h.team = team;

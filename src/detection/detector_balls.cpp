@@ -323,7 +323,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   for (const BallTrack& bt : ball_tracker.tracks()) fast_course = fast_course || ball_tracker.isFast(bt);
   for (int i = n_strong; tracking && fast_course && i < static_cast<int>(blobs.size()); ++i) {
     const FrameBlob& b = blobs[i];
-    if (!b.valid || b.streak || b.robot >= 0 || judge.isCarpet(b.rgb)) continue;
+    if (!b.valid || b.robot >= 0 || judge.isCarpet(b.rgb)) continue;
     BallCandidate c;
     c.blob = i;
     c.pos = b.at_ball;

@@ -18,7 +18,7 @@ struct FrameBlob {
   float score = 0;
   bool valid = false;
   bool weak = false;    // a weak peak (BlobList::weak), listed after the blobs
-  bool streak = false;  // a fast-ball candidate: never a center; its weak copy may be a side dot
+  bool streak = false;  // a fast-ball candidate: never part of a robot
   int robot = -1;       // accepted robot using this blob
   bool implausible_center = false;  // its robot was dropped for its center color
   // A strong blob clipped in two channels: the mean of its disc's samples
@@ -30,11 +30,10 @@ struct FrameBlob {
 };
 
 // Brightness (r + g + b) as a share of the center blob's: a side blob is
-// at least kTopBrightness where the frame does not show the robot's top
-// (the markers are about as bright as the centers; darker peaks lie on the
-// top; where it does, HypothesisSearch::darkerThanMarker weighs the peak
-// against the top itself), a marker read from the frame where no peak was
-// found at least kMarkerBrightness.
+// at least kTopBrightness (the markers are about as bright as the centers;
+// darker peaks lie on the robot top) unless the top the frame shows is
+// darker still (HypothesisSearch::darkerThanMarker), a marker read from the
+// frame where no peak was found at least kMarkerBrightness.
 constexpr float kTopBrightness = 0.33f, kMarkerBrightness = 0.5f;
 
 namespace detector_detail {

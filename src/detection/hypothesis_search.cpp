@@ -132,22 +132,15 @@ Hypothesis HypothesisSearch::bestAt(int c) {
 }
 
 bool HypothesisSearch::darkerThanMarker(int i, int c) {
-  if (brightness(i) >= brightness(c)) return false;
-  const bool below_share = brightness(i) < kTopBrightness * brightness(c);
-  if (!opt_.probe_missing_sides || !in_.frame.image) return below_share;
-  const FieldMm cp = blobAt(c).at_ref;
-  auto floorOf = [&](int stride) {
-    const auto top = ringDarkest(in_.frame, camera_, {cp.x, cp.y, ref_height_}, stride);
-    return top ? std::sqrt(std::max(*top, 1.f) * brightness(c)) : -1.f;
-  };
+  if (brightness(i) >= kTopBrightness * brightness(c)) return false;
+  if (!opt_.probe_missing_sides || !in_.frame.image) return true;
   if (top_of_ != c) {  // read once per center, only where a peak needs it
     top_of_ = c;
-    coarse_top_floor_ = floorOf(kCoarseRingStride);
-    top_floor_ = -2;
+    const FieldMm cp = blobAt(c).at_ref;
+    const auto top = ringDarkest(in_.frame, camera_, {cp.x, cp.y, ref_height_});
+    top_floor_ = top ? std::sqrt(std::max(*top, 1.f) * brightness(c)) : -1;
   }
-  if (coarse_top_floor_ >= 0 && brightness(i) >= coarse_top_floor_) return false;
-  if (top_floor_ == -2) top_floor_ = floorOf(1);
-  return top_floor_ >= 0 ? brightness(i) < top_floor_ : below_share;
+  return !(top_floor_ >= 0 && brightness(i) >= top_floor_);
 }
 
 FitTolerance HypothesisSearch::fitToleranceAt(const FieldMm& p) const {

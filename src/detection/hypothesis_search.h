@@ -57,16 +57,14 @@ class HypothesisSearch {
   Hypothesis bestAt(int c);
   const FrameBlob& blobAt(int i) const { return (*in_.blobs)[i]; }
   float brightness(int i) const { return blobAt(i).brightness(); }
-  // Whether peak i is too dark to be a marker of center c: darker than
-  // the center and, where the frame shows the robot's top along the
-  // side-dot ring (its darkest point), nearer to the top than to the
-  // center in the ratio of brightnesses (below their geometric mean);
-  // where it does not, below kTopBrightness of the center. A gamma raises
-  // every brightness to a power, which keeps that midpoint in place: under
-  // gamma 1.6 a teal dot reads a third of an amber center and sixteen
-  // times the black top; a dark ringing peak on the top stays nearer the
-  // top, and so does a brown patch of it lit under tungsten, half as
-  // bright as a pale blue center.
+  // Whether peak i is too dark to be a marker of center c: below
+  // kTopBrightness of the center's brightness and, where the frame shows
+  // the robot's top along the side-dot ring (its darkest point), nearer
+  // to the top than to the center in the ratio of brightnesses (below
+  // their geometric mean). A gamma raises every brightness to a power,
+  // which keeps that midpoint in place: under gamma 1.6 a teal dot reads a
+  // third of an amber center and sixteen times the black top; a dark
+  // ringing peak on the top stays nearer the top.
   bool darkerThanMarker(int i, int c);
 
   // Whether the camera sees any part of `area` stretched enough for
@@ -170,15 +168,8 @@ class HypothesisSearch {
   template <class Fn>
   void forSideBlobPairs(int c, const int* nbr, int k, Fn&& fn) const;
 
-  // The center whose top floors these hold: the geometric mean of its
-  // brightness and its ring's darkest, read first at three points 120
-  // degrees apart (a floor no lower than the whole ring's: most peaks
-  // clear it, and the whole ring costs as much as the rest of the
-  // detector's search), then, where a peak lies below that, on the whole
-  // ring (-1: none; -2: not read yet).
-  static constexpr int kCoarseRingStride = 24;
-  int top_of_ = -1;
-  float coarse_top_floor_ = -1, top_floor_ = -1;
+  int top_of_ = -1;      // the center whose top floor top_floor_ holds
+  float top_floor_ = -1;  // geometric mean of its brightness and its ring's darkest (-1: none)
 
   static constexpr int kMaxNeighbors = 10;        // side blob candidates per center
   static constexpr double kMinSideDistance = 30;  // mm, closer blobs cannot be side blobs

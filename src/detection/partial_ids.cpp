@@ -18,8 +18,10 @@ void resolvePartialIds(std::vector<Hypothesis>& robots) {
     std::array<MarkerColor, 4> guess = r.colors;
     for (int flips = 0; flips < (1 << m); ++flips) {
       auto c = r.colors;
-      for (int i = 0; i < m; ++i)
-        if (flips >> i & 1) c[missing[i]] = c[missing[i]] == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
+      for (int i = 0; i < m; ++i) {
+        MarkerColor& side = c[missing[i]];
+        if (flips >> i & 1) side = side == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
+      }
       if (taken(patternId(c))) continue;
       if (free++ == 0) guess = c;
     }

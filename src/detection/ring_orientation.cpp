@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include "detection/pattern_fit.h"
 #include "geometry/robot_pattern.h"
@@ -18,14 +17,13 @@ double slotAngle(int slot) {
   return std::atan2(o.y, o.x);
 }
 
-// Brightness along the ring at every `stride`-th point (the others are
-// left as they were); false where it leaves the image.
+// Brightness along the ring; false where it leaves the image.
 bool readRing(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-              std::array<float, kRingPoints>& bright, int stride = 1) {
+              std::array<float, kRingPoints>& bright) {
   if (!frame.image || frame.image->empty()) return false;
   const double r = RobotPatternGeometry::kSideBlobDistance;
   const double w = frame.image->cols, h = frame.image->rows;
-  for (int i = 0; i < kRingPoints; i += stride) {
+  for (int i = 0; i < kRingPoints; ++i) {
     const double a = 2 * kPi * i / kRingPoints;
     const auto px = camera.fieldToImage({center.x + r * std::cos(a), center.y + r * std::sin(a), center.z});
     if (!px || px->u < 0 || px->v < 0 || px->u > w - 1 || px->v > h - 1) return false;
@@ -38,11 +36,9 @@ bool readRing(const FrameView& frame, const CameraModel& camera, const FieldPoin
 
 }  // namespace
 
-std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-                                 int stride) {
+std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center) {
   std::array<float, kRingPoints> bright;
-  bright.fill(std::numeric_limits<float>::max());
-  if (!readRing(frame, camera, center, bright, stride)) return std::nullopt;
+  if (!readRing(frame, camera, center, bright)) return std::nullopt;
   return *std::min_element(bright.begin(), bright.end());
 }
 

@@ -25,10 +25,7 @@ std::optional<double> ringOrientation(const FrameView& frame, const CameraModel&
                                       float min_bright);
 
 // The darkest brightness (r + g + b) along that ring: the robot's top
-// between its dots. None where the ring leaves the image. Read at every
-// `stride`-th point only, it is never darker than the whole ring's: a
-// bound from above for a fraction of the reads.
-std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center,
-                                 int stride = 1);
+// between its dots. None where the ring leaves the image.
+std::optional<float> ringDarkest(const FrameView& frame, const CameraModel& camera, const FieldPoint& center);
 
 }  // namespace dv

@@ -78,7 +78,8 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   }
   for (int s = 0; s < 4; ++s) {
     if (!read[s] || (r.seen_sides >> s & 1)) continue;
-    const int label = sideColorOfDot(dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
+    const int label =
+        sideColorOfDot(dot[s], dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
     if (label < 0) continue;
     r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
@@ -132,7 +133,8 @@ void identifyRobot(Hypothesis& r, const IdentityContext& c) {
   const ColorVec pink = res.count[1] > 0 ? res.mean[1] : c.pink;
   for (int i = 1; i < r.n; ++i) {
     if (!blobs[r.blob[i]].weak) continue;
-    const int label = sideColorOfDot(blobs[r.blob[i]].rgb, green, pink, static_cast<float>(c.opt->weak_color_margin),
+    const FrameBlob& b = blobs[r.blob[i]];
+    const int label = sideColorOfDot(b.color, b.rgb, green, pink, static_cast<float>(c.opt->weak_color_margin),
                                      colors[r.slot[i] - 1]);
     if (label < 0) continue;
     r.seen_sides |= static_cast<uint8_t>(1u << (r.slot[i] - 1));

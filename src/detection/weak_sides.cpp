@@ -40,13 +40,13 @@ int weakSideColor(const ColorVec& color, const ColorVec& green, const ColorVec& 
   return clearlyNearer(colorDistance(color, green), colorDistance(color, pink), margin);
 }
 
-int sideColorOfDot(const float rgb[3], const ColorVec& green, const ColorVec& pink, float margin,
-                   MarkerColor& nearer) {
-  const ClippedColor seen(rgb);
-  const ColorVec plain = colorFeature(rgb[0], rgb[1], rgb[2]);
+int sideColorOfDot(const ColorVec& color, const float rgb[3], const ColorVec& green, const ColorVec& pink,
+                   float margin, MarkerColor& nearer) {
   // Two clipped channels fit nearly any hue: only what was seen counts.
-  const float dg = seen.saturated() ? colorDistance(plain, green) : seen.distance(green);
-  const float dp = seen.saturated() ? colorDistance(plain, pink) : seen.distance(pink);
+  const ClippedColor seen(rgb);
+  const bool one_clipped = seen.clipped() && !seen.saturated();
+  const float dg = one_clipped ? seen.distance(green) : colorDistance(color, green);
+  const float dp = one_clipped ? seen.distance(pink) : colorDistance(color, pink);
   nearer = dg <= dp ? MarkerColor::Green : MarkerColor::Pink;
   return clearlyNearer(dg, dp, margin);
 }

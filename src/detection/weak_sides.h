@@ -30,11 +30,12 @@ int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, con
 // to the nearer must stay below `margin` times its distance to the other.
 int weakSideColor(const ColorVec& color, const ColorVec& green, const ColorVec& pink, float margin);
 
-// As weakSideColor for a dot seen as `rgb` (0..255), a clipped channel free
-// to grow (clipped_color.h: a pink dot clipped in red is redder than it
-// shows). `nearer` gets the nearer of the two either way: where the dot is
-// clearly nearer to neither, it is still the better guess than a fixed one.
-int sideColorOfDot(const float rgb[3], const ColorVec& green, const ColorVec& pink, float margin,
-                   MarkerColor& nearer);
+// As weakSideColor for a dot of `color` seen as `rgb` (0..255): where one
+// channel is at the clip level it is free to grow (clipped_color.h: a pink
+// dot clipped in red is redder than it shows). `nearer` gets the nearer of
+// the two either way: where the dot is clearly nearer to neither, it is
+// still a better guess than a fixed one.
+int sideColorOfDot(const ColorVec& color, const float rgb[3], const ColorVec& green, const ColorVec& pink,
+                   float margin, MarkerColor& nearer);
 
 }  // namespace dv
