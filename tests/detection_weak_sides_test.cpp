@@ -188,7 +188,7 @@ TEST(DetectionWeakSides, AnUnclearWeakColorLeansTheGuess) {
   r.present = {true, false, true, true, true};
   const ColorRef g = SceneBuilder::kGreen, p = SceneBuilder::kPink;
   for (double toward_pink : {0.38, 0.45}) {
-    auto mix = [&](int a, int b) { return static_cast<int>(std::lround(a + toward_pink * (b - a))); };
+    auto mix = [&](float a, float b) { return static_cast<float>(std::lround(a + toward_pink * (b - a))); };
     const ColorRef dot{mix(g.r, p.r), mix(g.g, p.g), mix(g.b, p.b)};
     SCOPED_TRACE("dot " + std::to_string(dot.r) + " " + std::to_string(dot.g) + " " + std::to_string(dot.b));
     EXPECT_EQ(robotAt(withWeakFrontLeft(r, dot, false), r.position), nullptr) << "the dot's color is unclear";
