@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detection/clipped_color.h"
+
 namespace dv {
 
 int findWeakSlots(const PatternPose& pose, unsigned filled, BlobIndex& weak, const FitTolerance& tolerance,

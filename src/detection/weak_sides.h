@@ -9,7 +9,6 @@
 // frame's color classes, and its color decides a side's marker only when it
 // is clearly nearer to one of the two side colors.
 #include "detection/blob_index.h"
-#include "detection/clipped_color.h"
 #include "detection/color_classes.h"
 #include "detection/pattern_fit.h"
 #include "geometry/robot_pattern.h"
