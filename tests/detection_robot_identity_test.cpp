@@ -123,6 +123,34 @@ TEST(RobotIdentity, TwoColorsWithinOneClasssReachAreOne) {
   EXPECT_EQ(two.robot.id, 7);
 }
 
+// A center far out in color holds a robot's own split to a distance its
+// dots do not reach (eq. 5.24; an amber center under a cold cast, moderate
+// venue #1116); where the frame's side blobs split, its classes vouch for
+// dots each clearly nearer to one of them.
+TEST(RobotIdentity, AFarCenterColorLeavesTheSplitToTheFramesClasses) {
+  const DetectorOptions opt;
+  const ColorVec green = feature(84, 178, 169), pink = feature(198, 141, 231), amber = feature(207, 171, 10);
+  ASSERT_LT(colorDistance(green, pink), 0.5f * colorDistance(pink, amber));
+  for (int id : {1, 6, 13, 14}) {
+    RobotBlobs r({-1400, 500}, 2.0, id, green, pink);
+    r.blobs[0].color = amber;
+    IdentityContext c = context(r.blobs, opt, feature(80, 170, 160), feature(200, 140, 225));
+    identifyRobot(r.robot, c);
+    EXPECT_NE(r.robot.id, id) << "the frame's sides did not split: the robot's own one cluster stands";
+    c.sides_separated = true;
+    identifyRobot(r.robot, c);
+    EXPECT_EQ(r.robot.id, id);
+  }
+  // A dot clearly nearer to neither class vouches for nothing.
+  RobotBlobs unclear({-1400, 500}, 2.0, 6, green, pink);
+  unclear.blobs[0].color = amber;
+  unclear.blobs[1].color = feature(141, 160, 200);
+  IdentityContext c = context(unclear.blobs, opt, feature(80, 170, 160), feature(200, 140, 225));
+  c.sides_separated = true;
+  identifyRobot(unclear.robot, c);
+  EXPECT_NE(unclear.robot.id, 6);
+}
+
 // Where three sides are blobs, a weak peak's position does not move the
 // refitted pose.
 TEST(RobotIdentity, RefitTrustsBlobsOverAWeakPeak) {

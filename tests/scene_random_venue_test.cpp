@@ -331,5 +331,18 @@ TEST(SceneRandomVenue, AWeakDotClippedInRedMayBePink) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Moderate venue #1116: a cold cast at saturation 1.05 and gamma 0.61.
+// The amber centers read (207, 171, 10), 134 from their dots, whose pinks
+// and greens lie 65 apart: held to half the distance to its center
+// (eq. 5.24), each robot's own split made one cluster, and seven of eight
+// yellow robots read all pink or were lost. The frame's side classes split,
+// and each dot lies clearly nearer to one of them (robot_identity.cpp).
+TEST(SceneRandomVenue, AFarCenterColorLeavesTheSplitToTheFramesClasses) {
+  const SceneScore s = venueScore({1116, -1435, 504, {252, 126, 186}, {66, 182, 113}, {249, 170, 6}, {88, 166, 237},
+                                   {243, 79, 20}, {0.88, 0.97, 1.49}, 1.05, 0.61, 0.85, 1.16, -2.20, 0});
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

@@ -246,6 +246,7 @@ void Detector::Impl::identifyRobots() {
   if (robots.empty()) return;
   IdentityContext context{&blobs, frame_color[kGreen], frame_color[kPink], frame_view, &camera, &opt};
   context.green_spread = frame_spread[kGreen], context.pink_spread = frame_spread[kPink];
+  context.sides_separated = health.sides_separated;
   if (neutral.valid) context.white = &classes[kWhite].color;
   for (auto& r : robots) identifyRobot(r, context);
   resolvePartialIds(robots);

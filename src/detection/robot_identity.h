@@ -25,6 +25,7 @@ struct IdentityContext {
   const DetectorOptions* opt = nullptr;
   float green_spread = 0, pink_spread = 0;  // of this frame's side colors (0: unknown)
   const ColorVec* white = nullptr;          // the lines' color this frame (null: not seen)
+  bool sides_separated = false;             // green and pink split over the frame's side blobs
 };
 
 // Sets r.colors, r.seen_sides (bit s-1: slot s was seen) and r.id; r.team
