@@ -102,6 +102,22 @@ TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {
   EXPECT_FALSE(yellow.isBall(pale));
 }
 
+// The sun patch that clips the ball lights the carpet around it too: a lit
+// carpet within the marker's reach, nearer to it than to the field class,
+// is no ball where it lies nearer to the ring's carpet than to the marker.
+TEST(MarkerColoredBall, CarpetLitLikeTheMarkerIsTheRingsCarpet) {
+  const FrameColors colors = paintedColors();
+  const OrangeOnly judge;
+  float lit[3], lit_more[3];
+  for (int k = 0; k < 3; ++k)
+    lit[k] = 0.15f * kCarpet[k] + 0.85f * kYellowDot[k], lit_more[k] = 0.2f * kCarpet[k] + 0.8f * kYellowDot[k];
+  const ColorVec ring = feature(lit_more);
+  const MarkerColoredBallTest yellow(colors, judge, kYellow), yellow_on_lit(colors, judge, kYellow, &ring);
+  ASSERT_TRUE(yellow.isBall(lit));
+  EXPECT_FALSE(yellow_on_lit.isBall(lit));
+  EXPECT_TRUE(yellow_on_lit.isBall(kYellowDot));
+}
+
 // An over-exposed ball's unclipped rim is its color mixed with the carpet
 // around it. In a sun patch that carpet is lit, its chromaticity off the
 // field class's: the mix with it is a rim only where the ring's color is
@@ -109,21 +125,21 @@ TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {
 TEST(MarkerColoredBall, AnOverExposedRimMixesWithTheCarpetAroundIt) {
   const FrameColors colors = paintedColors();
   const OrangeOnly judge;
-  const MarkerColoredBallTest yellow(colors, judge, kYellow);
   const float lit[3] = {140, 250, 200};
   float rim[3];
   for (int k = 0; k < 3; ++k) rim[k] = (kYellowDot[k] + lit[k]) / 2;
   const ColorVec around = feature(lit);
+  const MarkerColoredBallTest yellow(colors, judge, kYellow), yellow_on_lit(colors, judge, kYellow, &around);
   EXPECT_FALSE(yellow.isRim(rim));
-  EXPECT_TRUE(yellow.isRim(rim, &around));
+  EXPECT_TRUE(yellow_on_lit.isRim(rim));
   // A mix with the field class's carpet is a rim either way; a pink dot's
   // mix with the lit carpet is none.
   float field_rim[3], pink_rim[3];
   for (int k = 0; k < 3; ++k)
     field_rim[k] = (kYellowDot[k] + kCarpet[k]) / 2, pink_rim[k] = (kPinkDot[k] + lit[k]) / 2;
   EXPECT_TRUE(yellow.isRim(field_rim));
-  EXPECT_TRUE(yellow.isRim(field_rim, &around));
-  EXPECT_FALSE(yellow.isRim(pink_rim, &around));
+  EXPECT_TRUE(yellow_on_lit.isRim(field_rim));
+  EXPECT_FALSE(yellow_on_lit.isRim(pink_rim));
 }
 
 // More light clips the ball along its own path, orange to a pale yellow
@@ -132,16 +148,16 @@ TEST(MarkerColoredBall, AnOverExposedRimMixesWithTheCarpetAroundIt) {
 TEST(MarkerColoredBall, AnOverExposedRimMayMixTheBallsOwnClippedColor) {
   const FrameColors colors = paintedColors();
   const OrangeOnly judge;
-  const MarkerColoredBallTest yellow(colors, judge, kYellow);
   const float lit[3] = {140, 250, 200};
   const ColorVec around = feature(lit);
+  const MarkerColoredBallTest yellow(colors, judge, kYellow, &around);
   float ball_rim[3], pink_rim[3];
   for (int k = 0; k < 3; ++k) {
     ball_rim[k] = (std::min(255.f, 2.5f * kOrangeBall[k]) + lit[k]) / 2;
     pink_rim[k] = (std::min(255.f, 2.5f * kPinkDot[k]) + lit[k]) / 2;
   }
-  EXPECT_TRUE(yellow.isRim(ball_rim, &around));
-  EXPECT_FALSE(yellow.isRim(pink_rim, &around));
+  EXPECT_TRUE(yellow.isRim(ball_rim));
+  EXPECT_FALSE(yellow.isRim(pink_rim));
 }
 
 }  // namespace

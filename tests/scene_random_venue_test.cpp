@@ -344,5 +344,20 @@ TEST(SceneRandomVenue, AFarCenterColorLeavesTheSplitToTheFramesClasses) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Moderate venue #1091: a sun patch (1.87) under a warm cast at saturation
+// 0.43 clips the ball to a pale yellow, (245, 248, 205), nearest to the
+// pale yellow centers: a ball in a marker's color, alone on the carpet.
+// But the patch lit the carpet around it to (157, 185, 144), within the
+// centers' reach and nearer to them than to the field class: judged
+// ball-colored, it ran on beyond the ball's rim, and the ball was lost.
+// Nearer to the ring's own carpet than to the centers, it is carpet
+// (marker_colored_ball.h).
+TEST(SceneRandomVenue, CarpetLitBesideAPaleBallIsNoPartOfIt) {
+  const SceneScore s = venueScore({1091, -2134, 47, {240, 79, 172}, {67, 182, 113}, {242, 226, 65}, {33, 63, 150},
+                                   {252, 109, 20}, {1.28, 1.14, 1.00}, 0.43, 0.87, 1.09, 1.84, -0.90, 1.87});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

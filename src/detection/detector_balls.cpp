@@ -415,7 +415,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
       std::optional<MarkerColoredBallTest> marker_test;
       if (marker_colored_ball)
         for (const auto& m : marker_colored)
-          if (m.blob == c.blob) marker_test.emplace(ball_colors, judge, m.cls);
+          if (m.blob == c.blob) marker_test.emplace(ball_colors, judge, m.cls, m.has_around ? &m.around : nullptr);
       const BallColorTest& test = marker_test ? static_cast<const BallColorTest&>(*marker_test) : judge;
       ImagePx refined;
       if (ballSilhouetteCenter(frame_view, test, *px, r, refined)) px = refined;
@@ -464,9 +464,8 @@ bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) co
 }
 
 void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking) {
-  for (const auto& m : marker_colored) {
+  for (auto& m : marker_colored) {
     const FrameBlob& b = blobs[m.blob];
-    const MarkerColoredBallTest test(ball_colors, judge, m.cls);
     ImagePx px;
     double r;
     // Within the class's reach (a line's false colors, a mix with the
@@ -477,10 +476,10 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     // any other's by its mean, which blur with the carpet may keep below
     // the clip level though the ball clipped (extreme #690: (236, 177, 99)).
     if (!ballInImage(m.blob, px, r)) continue;
-    ColorVec around;
-    const bool have_around = colorAroundBall(frame_view, px, r, opt.ball_radius, around);
+    m.has_around = colorAroundBall(frame_view, px, r, opt.ball_radius, m.around);
+    const MarkerColoredBallTest test(ball_colors, judge, m.cls, m.has_around ? &m.around : nullptr);
     const float* rgb = !ClippedColor(b.rgb).saturated() ? b.rgb : b.has_unclipped ? b.unclipped_rgb : nullptr;
-    const bool colored = rgb && (test.isBall(rgb) || test.isRim(rgb, have_around ? &around : nullptr));
+    const bool colored = rgb && (test.isBall(rgb) || test.isRim(rgb));
     // On a marking, a thin line's demosaiced false color can lie in a
     // marker's reach with the carpet beside it: there the blob must show a
     // whole ball's round silhouette (which has no color beyond its rim

@@ -323,6 +323,8 @@ struct Detector::Impl {
   struct MarkerColoredBlob {
     int blob;
     int cls;
+    ColorVec around;      // the ring's color (colorAroundBall)
+    bool has_around = false;
   };
   std::vector<MarkerColoredBlob> marker_colored;
   void addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking);

@@ -39,10 +39,10 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   if (seen.saturated()) return false;
   const float d = seen.distance(f_.color[k_]);
   const float reach = classReach(f_.spread[k_]);
-  return d <= reach && d < seen.distance(f_.color[kField]);
+  return d <= reach && d < seen.distance(f_.color[kField]) && (!around_ || d < seen.distance(*around_));
 }
 
-bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) const {
+bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
   const float reach = classReach(f_.spread[k_]);
@@ -68,7 +68,7 @@ bool MarkerColoredBallTest::isRim(const float rgb[3], const ColorVec* around) co
     if (clip_path && f_.mapped_orange) d = std::min(d, alongClipPath(carpet, *f_.mapped_orange));
     return d <= reach && d < seen.distance(carpet);
   };
-  return mixWith(f_.color[kField], false) || (around && mixWith(*around, true));
+  return mixWith(f_.color[kField], false) || (around_ && mixWith(*around_, true));
 }
 
 namespace {

@@ -16,29 +16,34 @@
 namespace dv {
 
 // Ball-colored: as the frame's judge says, or within the reach of one
-// marker class of this frame (and nearer to it than to the carpet); carpet:
-// as the judge says.
+// marker class of this frame and nearer to it than to the carpet: the
+// field class's and, where given, `around`'s (the ring's color,
+// colorAroundBall). The sun patch that clips the ball lights the carpet
+// too: under tungsten at saturation 0.43 the lit carpet beside a ball,
+// (157, 185, 144), lay within the pale yellow centers' reach and nearer to
+// them than to the field class, and it merged with the ball. Carpet: as
+// the judge says.
 class MarkerColoredBallTest final : public BallColorTest {
  public:
-  MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class)
-      : f_(frame), judge_(judge), k_(marker_class) {}
+  MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class,
+                        const ColorVec* around = nullptr)
+      : f_(frame), judge_(judge), k_(marker_class), around_(around) {}
   bool isBall(const float rgb[3]) const override;
   // A ball's color mixed with the carpet around it (an over-exposed ball's
   // unclipped rim, unclippedDiscColor, or a blob's mean): the marker's
   // color, or the ball's own as more light clips it, within the class's
-  // reach. That carpet is the field class's color or, where given,
-  // `around` (the ring's, colorAroundBall): the sun patch that clips the
-  // ball lights the carpet too, and under a neutral camera at 2.5 times the
-  // light the lit carpet's chromaticity moved off the field class's (a rim
-  // of (219, 210, 59) lay 14 from yellow, beyond its reach, and off the mix
-  // with the field class).
-  bool isRim(const float rgb[3], const ColorVec* around = nullptr) const;
+  // reach. That carpet is the field class's color or `around`: under a
+  // neutral camera at 2.5 times the light the lit carpet's chromaticity
+  // moved off the field class's (a rim of (219, 210, 59) lay 14 from
+  // yellow, beyond its reach, and off the mix with the field class).
+  bool isRim(const float rgb[3]) const;
   bool isCarpet(const float rgb[3]) const override { return judge_.isCarpet(rgb); }
 
  private:
   const FrameColors& f_;
   const BallColorTest& judge_;
   int k_;
+  const ColorVec* around_;
 };
 
 // The share (0..1) of a ring around a ball at `center` (image px, radius
