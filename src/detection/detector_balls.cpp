@@ -137,8 +137,18 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   };
   // A blob nearest to a marker's class may be a ball in that marker's
   // color (a ball clipped in a sun patch): addMarkerColoredBalls judges it.
+  // Nearest to another class but the carpet, off the markings, it may be a
+  // ball clipped along its own path: a sun patch of 2.29 under a warm cast
+  // at saturation 0.41 clipped one to (239, 237, 180), nearest to the
+  // lines' white (moderate #1006); one of 1.97 at saturation 0.76 to (250,
+  // 244, 149), nearest to yellow-green dots (#1020). On a marking that is
+  // the lines' own color (a crossing of the center circle read (188, 192,
+  // 135) there).
   auto keepIfMarkerColored = [&](int i, int nearest) {
-    if (nearest == kYellow || nearest == kPink) marker_colored.push_back({i, nearest});
+    if (nearest == kYellow || nearest == kPink)
+      marker_colored.push_back({i, nearest});
+    else if (nearest != kField && !onMarking(blobs[i].at_ball))
+      marker_colored.push_back({i, -1});
   };
   ColorVec field_sum;
   int field_n = 0;
@@ -464,6 +474,10 @@ bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) co
 }
 
 void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking) {
+  // One ball at most: this is the fallback where no ball of the ball's own
+  // colors was found, and a sun patch's lit carpet makes many peaks alike
+  // (extreme #589: six, the ball the strongest).
+  int best = -1;
   for (auto& m : marker_colored) {
     const FrameBlob& b = blobs[m.blob];
     ImagePx px;
@@ -479,6 +493,11 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     m.has_around = colorAroundBall(frame_view, px, r, opt.ball_radius, m.around);
     const MarkerColoredBallTest test(ball_colors, judge, m.cls, m.has_around ? &m.around : nullptr);
     const float* rgb = !ClippedColor(b.rgb).saturated() ? b.rgb : b.has_unclipped ? b.unclipped_rgb : nullptr;
+    // A peak no farther from its ring's color than a color's noise is that
+    // carpet's texture (a sun patch's lit carpet, (197, 255, 130) in a ring
+    // of its own color: a mix of the carpet with yellow as the frame's
+    // classes saw it).
+    if (rgb && m.has_around && ClippedColor(rgb).distance(m.around) <= kMinClassRadius) continue;
     const bool colored = rgb && (test.isBall(rgb) || test.isRim(rgb));
     // On a marking, a thin line's demosaiced false color can lie in a
     // marker's reach with the carpet beside it: there the blob must show a
@@ -495,9 +514,13 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     BallCandidate c;
     c.blob = m.blob;
     c.pos = b.at_ball;
-    c.confidence = carpet * blobStrength(b.score, strength_ref) * ballTemporal(c, tracking);
-    c.rank = c.confidence;
-    if (c.confidence >= opt.min_ball_confidence) ball_cands.push_back(c);
+    const double temporal = ballTemporal(c, tracking);
+    c.confidence = carpet * blobStrength(b.score, strength_ref) * temporal;
+    c.rank = carpet * blobStrengthRatio(b.score, strength_ref) * temporal;
+    if (c.confidence >= opt.min_ball_confidence && (best < 0 || c.rank > ball_cands[best].rank)) {
+      if (best < 0) best = static_cast<int>(ball_cands.size()), ball_cands.push_back(c);
+      ball_cands[best] = c;
+    }
   }
 }
 

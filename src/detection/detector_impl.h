@@ -318,8 +318,8 @@ struct Detector::Impl {
   bool ballInImage(int i, ImagePx& px, double& radius_px) const;
   // Round blobs in a marker's color (yellow or pink) outside every robot,
   // with that class: the ball where no blob or border fit of the ball's
-  // own colors is (marker_colored_ball.h). Appends those standing alone on
-  // the carpet to ball_cands.
+  // own colors is (marker_colored_ball.h). Appends the surest of those
+  // standing alone on the carpet to ball_cands.
   struct MarkerColoredBlob {
     int blob;
     int cls;

@@ -36,7 +36,7 @@ constexpr float kClipStep = 1.1f;
 bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
   if (judge_.isBall(rgb)) return true;
   const ClippedColor seen(rgb);
-  if (seen.saturated()) return false;
+  if (k_ < 0 || seen.saturated()) return false;
   const float d = seen.distance(f_.color[k_]);
   const float reach = classReach(f_.spread[k_]);
   return d <= reach && d < seen.distance(f_.color[kField]) && (!around_ || d < seen.distance(*around_));
@@ -45,7 +45,7 @@ bool MarkerColoredBallTest::isBall(const float rgb[3]) const {
 bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
   const ClippedColor seen(rgb);
   if (seen.saturated()) return false;
-  const float reach = classReach(f_.spread[k_]);
+  const float reach = classReach(f_.spread[k_ >= 0 ? k_ : kOrange]);
   // The rim mixes the carpet with the marker's color or, with the carpet
   // the ring shows, with the ball's own as the light clips it: from orange
   // through a pale yellow whose blue the cast and gamma set, not the
@@ -63,7 +63,7 @@ bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
     return d;
   };
   auto mixWith = [&](const ColorVec& carpet, bool clip_path) {
-    float d = streakColorDistance(seen, carpet, f_.color[k_]);
+    float d = k_ >= 0 ? streakColorDistance(seen, carpet, f_.color[k_]) : std::numeric_limits<float>::max();
     if (clip_path) d = std::min(d, alongClipPath(carpet, f_.color[kOrange]));
     if (clip_path && f_.mapped_orange) d = std::min(d, alongClipPath(carpet, *f_.mapped_orange));
     return d <= reach && d < seen.distance(carpet);

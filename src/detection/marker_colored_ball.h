@@ -9,14 +9,18 @@
 // the carpet, is the ball where the frame shows no ball of the ball's own
 // colors. Its silhouette is judged by that marker's class as well as the
 // ball's own colors (its shaded side, unclipped, is orange), so it is
-// centered like any ball.
+// centered like any ball. Nearest to another class (a pale yellow nearer
+// to the lines' white or to yellow-green dots), off the markings, its color
+// must lie on the ball's own clip path mixed with the carpet around it.
 #include "detection/ball_color.h"
 #include "detection/seen_color.h"
 
 namespace dv {
 
 // Ball-colored: as the frame's judge says, or within the reach of one
-// marker class of this frame and nearer to it than to the carpet: the
+// marker class of this frame (`marker_class`; -1: none, only the ball's own
+// colors as the light clips them count, for the rim) and nearer to it than
+// to the carpet: the
 // field class's and, where given, `around`'s (the ring's color,
 // colorAroundBall). The sun patch that clips the ball lights the carpet
 // too: under tungsten at saturation 0.43 the lit carpet beside a ball,
