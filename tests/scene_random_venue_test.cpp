@@ -25,13 +25,16 @@ struct Venue {
   double saturation, gamma, exposure, uneven_ratio, uneven_direction, sun_gain;
 };
 
-// The venue as the script writes it, scored at half resolution.
-SceneScore venueScore(const Venue& v) {
+// The venue as the script writes it, scored at half resolution; without
+// `ball_in_view` the ball lies on the other half, out of the camera's view
+// (the sun patch stays where the script put it).
+SceneScore venueScore(const Venue& v, bool ball_in_view = true) {
   auto rgb = [](const std::array<int, 3>& c) {
     return "[" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + "]";
   };
-  char ball[64], lighting[512];
-  std::snprintf(ball, sizeof ball, "[%.0f, %.0f]", v.ball_x, v.ball_y);
+  char ball[64], sun_at[64], lighting[512];
+  std::snprintf(sun_at, sizeof sun_at, "[%.0f, %.0f]", v.ball_x, v.ball_y);
+  std::snprintf(ball, sizeof ball, "[%.0f, %.0f]", ball_in_view ? v.ball_x : 2500.0, ball_in_view ? v.ball_y : 0.0);
   std::snprintf(lighting, sizeof lighting,
                 "lighting:\n  white_balance: [%.2f, %.2f, %.2f]\n  saturation: %.2f\n  gamma: %.2f\n"
                 "  exposure: %.2f\n  uneven_ratio: %.2f\n  uneven_direction: %.2f\n",
@@ -41,7 +44,7 @@ SceneScore venueScore(const Venue& v) {
   if (v.sun_gain > 0)
     std::snprintf(sun, sizeof sun,
                   "  sun_patches:\n    - {center: %s, radii: [600, 500], angle: 0.3, gain: %.2f, softness: 0.25}\n",
-                  ball, v.sun_gain);
+                  sun_at, v.sun_gain);
   const std::string n = std::to_string(v.seed);
   const std::string yaml = "name: venue_" + n + "\nseed: " + n + R"(
 field: division_b
@@ -394,6 +397,19 @@ TEST(SceneRandomVenue, PeaksOfASunLitCarpetAreNoBalls) {
                                       {38, 74, 159}, {252, 112, 20}, {1.53, 1.17, 0.68}, 0.73, 1.28, 1.18, 2.94,
                                       -0.46, 2.07});
   EXPECT_EQ(lost.balls_detected, 0);
+}
+
+// Extreme venue #444 with its ball out of view: a blue robot not found in
+// a sun patch (1.60) under a warm cast kept a yellow-green dot clipped pale,
+// (231, 240, 124), nearest to the green class, on the ball's own clip path
+// mixed with the carpet, and half its ring on the robot's top. Nearest to
+// no marker, a ball must have carpet all round it.
+TEST(SceneRandomVenue, APaleDotOfARobotNotFoundIsNoBall) {
+  const SceneScore s = venueScore({444, -1542, 1776, {247, 109, 181}, {141, 207, 57}, {246, 197, 34}, {75, 142, 216},
+                                   {248, 95, 20}, {1.32, 0.81, 0.94}, 0.84, 1.46, 1.25, 2.27, -0.36, 1.60},
+                                  false);
+  EXPECT_EQ(s.truth_balls, 0);
+  EXPECT_EQ(s.balls_detected, 0);
 }
 
 }  // namespace

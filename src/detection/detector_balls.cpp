@@ -509,8 +509,11 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     if (!colored || (round_needed ? !ballSilhouetteCenter(frame_view, test, px, r, whole)
                                   : ballColorBeyondRim(frame_view, test, px, r)))
       continue;
+    // Nearest to no marker, its color vouches least: the ring must be
+    // carpet all round. (A robot not found kept a yellow-green dot, clipped
+    // pale in a sun patch, whose ring was half its top.)
     const double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
-    if (carpet < kMinCarpetAroundBall) continue;
+    if (carpet < (m.cls >= 0 ? kMinCarpetAroundBall : 1.0)) continue;
     BallCandidate c;
     c.blob = m.blob;
     c.pos = b.at_ball;
