@@ -145,39 +145,26 @@ TEST(MarkerColoredBall, AnOverExposedRimMixesWithTheCarpetAroundIt) {
 // More light clips the ball along its own path, orange to a pale yellow
 // whose blue is the ball's, not the yellow centers': a rim of that mixed
 // with the lit carpet is a rim too. A pink dot clipped alike is none.
+// Nearest to no marker (a pale yellow nearer to the lines' white), only the
+// ball's own colors count, not a class's.
 TEST(MarkerColoredBall, AnOverExposedRimMayMixTheBallsOwnClippedColor) {
   const FrameColors colors = paintedColors();
   const OrangeOnly judge;
   const float lit[3] = {140, 250, 200};
   const ColorVec around = feature(lit);
-  const MarkerColoredBallTest yellow(colors, judge, kYellow, &around);
-  float ball_rim[3], pink_rim[3];
+  const MarkerColoredBallTest yellow(colors, judge, kYellow, &around), own(colors, judge, -1, &around);
+  float ball_rim[3], pink_rim[3], yellow_rim[3];
   for (int k = 0; k < 3; ++k) {
     ball_rim[k] = (std::min(255.f, 2.5f * kOrangeBall[k]) + lit[k]) / 2;
     pink_rim[k] = (std::min(255.f, 2.5f * kPinkDot[k]) + lit[k]) / 2;
+    yellow_rim[k] = (kYellowDot[k] + kCarpet[k]) / 2;
   }
   EXPECT_TRUE(yellow.isRim(ball_rim));
   EXPECT_FALSE(yellow.isRim(pink_rim));
-}
-
-// Nearest to no marker (a pale yellow nearer to the lines' white), only the
-// ball's own colors count: its clip path mixed with the ring's carpet, not
-// a class's color.
-TEST(MarkerColoredBall, NoMarkersClassLeavesTheBallsOwnClipPath) {
-  const FrameColors colors = paintedColors();
-  const OrangeOnly judge;
-  const float lit[3] = {140, 250, 200};
-  const ColorVec around = feature(lit);
-  const MarkerColoredBallTest own(colors, judge, -1, &around), yellow(colors, judge, kYellow, &around);
-  float ball_rim[3], yellow_rim[3];
-  for (int k = 0; k < 3; ++k) {
-    ball_rim[k] = (std::min(255.f, 2.5f * kOrangeBall[k]) + lit[k]) / 2;
-    yellow_rim[k] = (kYellowDot[k] + kCarpet[k]) / 2;
-  }
   EXPECT_TRUE(own.isRim(ball_rim));
-  EXPECT_TRUE(yellow.isRim(yellow_rim));
+  EXPECT_FALSE(own.isRim(pink_rim));
+  ASSERT_TRUE(yellow.isRim(yellow_rim));
   EXPECT_FALSE(own.isRim(yellow_rim));
-  EXPECT_TRUE(yellow.isBall(kYellowDot));
   EXPECT_FALSE(own.isBall(kYellowDot));
   EXPECT_TRUE(own.isBall(kOrangeBall));
 }

@@ -347,52 +347,41 @@ TEST(SceneRandomVenue, AFarCenterColorLeavesTheSplitToTheFramesClasses) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
-// Moderate venue #1091: a sun patch (1.87) under a warm cast at saturation
-// 0.43 clips the ball to a pale yellow, (245, 248, 205), nearest to the
-// pale yellow centers: a ball in a marker's color, alone on the carpet.
-// But the patch lit the carpet around it to (157, 185, 144), within the
-// centers' reach and nearer to them than to the field class: judged
-// ball-colored, it ran on beyond the ball's rim, and the ball was lost.
-// Nearer to the ring's own carpet than to the centers, it is carpet
-// (marker_colored_ball.h).
-TEST(SceneRandomVenue, CarpetLitBesideAPaleBallIsNoPartOfIt) {
-  const SceneScore s = venueScore({1091, -2134, 47, {240, 79, 172}, {67, 182, 113}, {242, 226, 65}, {33, 63, 150},
-                                   {252, 109, 20}, {1.28, 1.14, 1.00}, 0.43, 0.87, 1.09, 1.84, -0.90, 1.87});
-  EXPECT_EQ(s.ballRecall(), 1.0);
-  EXPECT_EQ(s.ballPrecision(), 1.0);
-}
-
-// A sun patch clips the ball to a pale yellow nearest to no marker's class:
-// to the lines' white under a warm cast at saturation 0.41 (moderate venue
-// #1006, (239, 237, 180)), to yellow-green dots at saturation 0.76 (#1020,
-// (250, 244, 149)). Off the markings, alone on the carpet, its color on the
-// ball's own clip path mixed with the carpet around it, it is the ball.
-TEST(SceneRandomVenue, APaleBallNearestToNoMarkerFollowsItsOwnClipPath) {
+// Balls a sun patch clipped pale, each the only ball in view and found
+// (marker_colored_ball.h, detector_balls.cpp):
+// - moderate #1091 (1.87, warm cast, saturation 0.43): the ball read (245,
+//   248, 205), nearest to the pale yellow centers, but the patch lit the
+//   carpet around it to (157, 185, 144), within the centers' reach and
+//   nearer to them than to the field class: taken for the ball's color, it
+//   ran on beyond the ball's rim. Nearer to the ring's own carpet than to
+//   the centers, it is carpet.
+// - moderate #1006 (2.29, saturation 0.41) and #1020 (1.97, saturation
+//   0.76): (239, 237, 180), nearest to the lines' white, and (250, 244,
+//   149), nearest to yellow-green dots. Nearest to no marker's class, off
+//   the markings, alone on the carpet, its color on the ball's own clip
+//   path mixed with the carpet around it: the ball.
+// - extreme #589 (1.97, exposure 1.36): the lit carpet, (191..227, 254,
+//   139..163), between the carpet and the lemon centers, peaked beside the
+//   ball: two false balls, six once the lit carpet no longer ran on beyond
+//   their rims. A peak of its ring's own color is texture, and this
+//   fallback gives one ball at most, the strongest.
+TEST(SceneRandomVenue, BallsClippedPaleInTheSunAreFoundAlone) {
   const Venue venues[] = {
+      {1091, -2134, 47, {240, 79, 172}, {67, 182, 113}, {242, 226, 65}, {33, 63, 150}, {252, 109, 20},
+       {1.28, 1.14, 1.00}, 0.43, 0.87, 1.09, 1.84, -0.90, 1.87},
       {1006, -1021, -924, {242, 88, 174}, {58, 179, 119}, {243, 217, 55}, {79, 150, 223}, {254, 116, 20},
        {1.29, 0.89, 0.98}, 0.41, 1.53, 0.91, 1.00, -1.82, 2.29},
       {1020, -3751, 1174, {242, 88, 174}, {117, 199, 75}, {243, 217, 55}, {61, 117, 195}, {248, 98, 20},
-       {1.50, 0.98, 0.72}, 0.76, 0.78, 1.07, 1.72, -0.85, 1.97}};
+       {1.50, 0.98, 0.72}, 0.76, 0.78, 1.07, 1.72, -0.85, 1.97},
+      {589, -2545, 606, {253, 131, 187}, {50, 177, 125}, {241, 234, 74}, {29, 57, 145}, {247, 95, 20},
+       {1.49, 1.06, 0.73}, 0.66, 1.33, 1.36, 1.46, -0.04, 1.97}};
   for (const Venue& v : venues) {
     const SceneScore s = venueScore(v);
     EXPECT_EQ(s.ballRecall(), 1.0) << "venue " << v.seed;
     EXPECT_EQ(s.ballPrecision(), 1.0) << "venue " << v.seed;
   }
-}
-
-// Extreme venue #589: a sun patch (1.97) over the ball at exposure 1.36 lit
-// the carpet around it to (191..227, 254, 139..163), between the carpet and
-// the lemon centers: peaks of that texture passed as balls in a marker's
-// color beside the ball itself (two false balls, six once the lit carpet no
-// longer ran on beyond their rims). A peak of its ring's own color is
-// texture, and this fallback gives one ball at most, the strongest.
-// (Extreme #296, whose ball is still lost: three such peaks, (197..233,
-// 255, 130..154), each 4..8 from its ring's color.)
-TEST(SceneRandomVenue, PeaksOfASunLitCarpetAreNoBalls) {
-  const SceneScore s = venueScore({589, -2545, 606, {253, 131, 187}, {50, 177, 125}, {241, 234, 74}, {29, 57, 145},
-                                   {247, 95, 20}, {1.49, 1.06, 0.73}, 0.66, 1.33, 1.36, 1.46, -0.04, 1.97});
-  EXPECT_EQ(s.ballRecall(), 1.0);
-  EXPECT_EQ(s.ballPrecision(), 1.0);
+  // Extreme #296, whose ball is still lost: three lit-carpet peaks, (197..233,
+  // 255, 130..154), each 4..8 from its ring's color, are no balls either.
   const SceneScore lost = venueScore({296, -1176, 2241, {251, 124, 185}, {136, 205, 61}, {240, 237, 77},
                                       {38, 74, 159}, {252, 112, 20}, {1.53, 1.17, 0.68}, 0.73, 1.28, 1.18, 2.94,
                                       -0.46, 2.07});
