@@ -20,13 +20,12 @@ namespace dv {
 // Ball-colored: as the frame's judge says, or within the reach of one
 // marker class of this frame (`marker_class`; -1: none, only the ball's own
 // colors as the light clips them count, for the rim) and nearer to it than
-// to the carpet: the
-// field class's and, where given, `around`'s (the ring's color,
-// colorAroundBall). The sun patch that clips the ball lights the carpet
-// too: under tungsten at saturation 0.43 the lit carpet beside a ball,
-// (157, 185, 144), lay within the pale yellow centers' reach and nearer to
-// them than to the field class, and it merged with the ball. Carpet: as
-// the judge says.
+// to the carpet: the field class's and, where given, `around`'s (the
+// ring's color, colorAroundBall). The sun patch that clips the ball lights
+// the carpet too: under a warm cast at saturation 0.43 the lit carpet
+// beside a ball, (157, 185, 144), lay within the pale yellow centers' reach
+// and nearer to them than to the field class, and it merged with the ball.
+// Carpet: as the judge says.
 class MarkerColoredBallTest final : public BallColorTest {
  public:
   MarkerColoredBallTest(const FrameColors& frame, const BallColorTest& judge, int marker_class,
