@@ -143,11 +143,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // lines' white (moderate #1006); one of 1.97 at saturation 0.76 to (250,
   // 244, 149), nearest to yellow-green dots (#1020). On a marking that is
   // the lines' own color (a crossing of the center circle read (188, 192,
-  // 135) there).
+  // 135) there); beside a pattern's dot, a lost robot's washed-out center.
   auto keepIfMarkerColored = [&](int i, int nearest) {
     if (nearest == kYellow || nearest == kPink)
       marker_colored.push_back({i, nearest});
-    else if (nearest != kField && !onMarking(blobs[i].at_ball))
+    else if (nearest != kField && !onMarking(blobs[i].at_ball) && !dotsAround(i))
       marker_colored.push_back({i, -1});
   };
   ColorVec field_sum;
