@@ -401,5 +401,31 @@ TEST(SceneRandomVenue, APaleDotOfARobotNotFoundIsNoBall) {
   EXPECT_EQ(s.balls_detected, 0);
 }
 
+// Under tungsten, with the ball out of view: the field's outer lines and a
+// goal's walls. Extreme #849: a touch line 1.8 px wide drifts across the
+// mosaic's phase, so its false color comes in orange and cyan stretches of
+// about 100 mm; three orange ones, (188, 132, 63), became balls, the
+// stretches 128 mm either way being cyan (streak_markings.h: a stretch in
+// the same phase farther on stands for the line). Extreme #778: the corner
+// of goal and touch line, its streak 28 mm from the touch line on the
+// ball's plane and 15 on the ground. Moderate #470: a goal's back corner,
+// 160 mm up, 70 mm beyond the wall on the ball's plane (detector_impl.h:
+// a marking or wall is where the camera's ray meets it).
+TEST(SceneRandomVenue, OuterLinesAndGoalCornersAreNoBall) {
+  const Venue venues[] = {
+      {849, -3122, -1332, {247, 109, 181}, {73, 184, 108}, {248, 179, 15}, {31, 61, 148}, {242, 78, 20},
+       {1.60, 0.82, 0.60}, 0.99, 1.56, 1.30, 1.35, -2.87, 1.95},
+      {778, -1244, 777, {247, 110, 181}, {75, 185, 106}, {242, 227, 66}, {44, 85, 168}, {246, 89, 20},
+       {1.56, 0.85, 0.65}, 1.23, 1.43, 1.34, 2.67, -0.56, 1.82},
+      {470, -1445, -2029, {238, 71, 169}, {52, 177, 123}, {241, 236, 75}, {87, 164, 235}, {250, 103, 20},
+       {1.56, 0.94, 0.65}, 0.52, 1.50, 1.03, 1.88, 1.31, 1.92},
+  };
+  for (const Venue& v : venues) {
+    const SceneScore s = venueScore(v, false);
+    EXPECT_EQ(s.truth_balls, 0) << v.seed;
+    EXPECT_EQ(s.balls_detected, 0) << v.seed;
+  }
+}
+
 }  // namespace
 }  // namespace dv

@@ -439,16 +439,41 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   }
 }
 
+FieldMm Detector::Impl::seenAtHeight(const FieldMm& p, double z) const {
+  const Eigen::Vector3d& c = camera.position();
+  if (!(c.z() > opt.ball_radius)) return p;
+  const double t = (c.z() - z) / (c.z() - opt.ball_radius);
+  return {c.x() + (p.x - c.x()) * t, c.y() + (p.y - c.y()) * t};
+}
+
+// A marking is painted on the ground: the blob at p may be a ball near it
+// or the line itself, seen where the camera's ray through p meets z = 0
+// (farther out by the ball's height as the view tilts). At a corner of the
+// field under tungsten a line's own streak lay 28 mm from the touch line on
+// the ball's plane, 15 on the ground.
 bool Detector::Impl::onMarking(const FieldMm& p) const {
-  return field.distanceToMarkings(p) < opt.ball_radius + field.line_thickness / 2.0;
+  const double reach = opt.ball_radius + field.line_thickness / 2.0;
+  return std::min(field.distanceToMarkings(p), field.distanceToMarkings(seenAtHeight(p, 0))) < reach;
 }
 
 bool Detector::Impl::atCrossing(const FieldMm& p) const {
-  return field.markingsWithin(p, opt.ball_radius + field.line_thickness / 2.0) >= 2;
+  const double reach = opt.ball_radius + field.line_thickness / 2.0;
+  return std::max(field.markingsWithin(p, reach), field.markingsWithin(seenAtHeight(p, 0), reach)) >= 2;
 }
 
+// A goal's wall stands goal_height tall: the ray through p may pass it at
+// any height up to that (the top of a back corner 160 mm up lay 70 mm
+// beyond the wall on the ball's plane, seen from the top-down camera).
 bool Detector::Impl::onGoalWall(const FieldMm& p) const {
-  return field.distanceToGoalWalls(p) < opt.ball_radius + FieldModel::kGoalWallThickness / 2;
+  const double reach = opt.ball_radius + FieldModel::kGoalWallThickness / 2;
+  const FieldMm ground = seenAtHeight(p, 0), top = seenAtHeight(p, field.goal_height);
+  const int n = static_cast<int>(std::ceil(dist(ground, top) / opt.ball_radius));
+  for (int k = 0; k <= n; ++k) {
+    const double s = n > 0 ? double(k) / n : 0.0;
+    if (field.distanceToGoalWalls({ground.x + (top.x - ground.x) * s, ground.y + (top.y - ground.y) * s}) < reach)
+      return true;
+  }
+  return false;
 }
 
 bool Detector::Impl::seenStretched(const FieldMm& p) const {

@@ -335,8 +335,11 @@ struct Detector::Impl {
   // course, one moving faster than any robot: 1 at the prediction, 0 at the
   // gate's edge; 0 off every such course.
   double courseConfidence(const BallCandidate& c) const;
+  // Where the camera's ray through ball-plane point p is at height z.
+  FieldMm seenAtHeight(const FieldMm& p, double z) const;
   // Whether `p` (ball plane) lies within a ball radius of a field marking's
-  // or of a goal wall's center line, and whether the camera sees it
+  // or of a goal wall's center line, or its ray passes that near one where
+  // the marking lies or the wall stands, and whether the camera sees it
   // stretched (a grazing view, view_stretch.h).
   bool onMarking(const FieldMm& p) const;
   bool atCrossing(const FieldMm& p) const;  // within that of two markings

@@ -103,25 +103,38 @@ std::optional<float> MarkingMask::contrastToMarking(const cv::Mat& raw, BayerPat
   float here[3];
   if (!discRgb(raw, bayer, p, here)) return std::nullopt;
   const PlaneMarking& m = markings_[static_cast<size_t>(marking)];
+  auto along = [&](double step, FieldMm& q) {
+    if (!m.arc) {
+      q = {p.x + step * m.dir.x, p.y + step * m.dir.y};
+      return true;
+    }
+    // Along the circle through p about the arc's center.
+    const double dx = p.x - m.center.x, dy = p.y - m.center.y, r = std::hypot(dx, dy);
+    if (!(r > 0)) return false;
+    const double ct = std::cos(step / r), st = std::sin(step / r);
+    q = {m.center.x + ct * dx - st * dy, m.center.y + st * dx + ct * dy};
+    return true;
+  };
   float there[2][3];
   for (int k = 0; k < 2; ++k) {
-    const double step = (k == 0 ? -1 : 1) * kMarkingLookMm;
     FieldMm q;
-    if (m.arc) {
-      // Along the circle through p about the arc's center.
-      const double dx = p.x - m.center.x, dy = p.y - m.center.y, r = std::hypot(dx, dy);
-      if (!(r > 0)) return std::nullopt;
-      const double ct = std::cos(step / r), st = std::sin(step / r);
-      q = {m.center.x + ct * dx - st * dy, m.center.y + st * dx + ct * dy};
-    } else {
-      q = {p.x + step * m.dir.x, p.y + step * m.dir.y};
-    }
-    if (!discRgb(raw, bayer, q, there[k])) return std::nullopt;
+    if (!along((k == 0 ? -1 : 1) * kMarkingLookMm, q) || !discRgb(raw, bayer, q, there[k])) return std::nullopt;
   }
-  // Beyond the marking's own change along it (a thin line drifts across
-  // the mosaic's phase, the light varies): a stretch between two others
-  // differs from each by less than they differ from each other.
-  const float nearer = std::min(colors.chromaDistance2(here, there[0]), colors.chromaDistance2(here, there[1]));
+  float nearer = std::min(colors.chromaDistance2(here, there[0]), colors.chromaDistance2(here, there[1]));
+  // A thin line drifts across the mosaic's phase along it, so its false
+  // color comes in stretches: the stretch in the candidate's phase may lie
+  // beyond the nearest two (a touch line under tungsten at 1224 x 1024 made
+  // orange and cyan stretches of about 100 mm each). The nearest look like
+  // it within kMarkingSpanMm either way stands for the marking.
+  for (double d = kMarkingLookMm + kMarkingSpanStepMm; d <= kMarkingSpanMm; d += kMarkingSpanStepMm)
+    for (double sign : {-1.0, 1.0}) {
+      FieldMm q;
+      float rgb[3];
+      if (along(sign * d, q) && discRgb(raw, bayer, q, rgb)) nearer = std::min(nearer, colors.chromaDistance2(here, rgb));
+    }
+  // Beyond the marking's own change along it (the light varies, the
+  // phase drifts): a stretch between two others differs from each by less
+  // than they differ from each other.
   return nearer - colors.chromaDistance2(there[0], there[1]);
 }
 

@@ -39,6 +39,13 @@ namespace dv {
 // end reach (kStreakEndMm clears the ball and half its streak at 8 m/s),
 // so that the reference's color disc clears the streak by as much again.
 inline constexpr double kMarkingLookMm = 128;
+// How far on, and in what steps, a stretch in the candidate's own phase on
+// the mosaic is looked for (contrastToMarking): four looks, no farther than
+// a quarter look apart (a stretch of one phase is longer than that wherever
+// its false color is strong enough to make a streak). A ball's own streak
+// ends well within the nearest look, so no step finds the ball again.
+inline constexpr double kMarkingSpanMm = 4 * kMarkingLookMm;
+inline constexpr double kMarkingSpanStepMm = kMarkingLookMm / 4;
 
 // A grid cell's marking: its index (the field's lines, then its arcs; -1:
 // none) and whether two markings meet there.
@@ -61,9 +68,10 @@ class MarkingMask {
     return {static_cast<int>(c & kIndexBits) - 1, (c & kCrossingBit) != 0};
   }
   // The squared chroma distance (colors.chromaDistance2) of the color disc
-  // (kColorRadiusMm) around plane point p from the same disc kMarkingLookMm
-  // along `marking` either way, the nearer of the two; nullopt where
-  // neither lies in the image.
+  // (kColorRadiusMm) around plane point p from the same disc along
+  // `marking`, the nearest of those kMarkingLookMm either way and on to
+  // kMarkingSpanMm, less the two nearest looks' own difference; nullopt
+  // where the two nearest do not lie in the image.
   std::optional<float> contrastToMarking(const cv::Mat& raw, BayerPattern bayer, const BlobColorGate& colors,
                                          FieldMm p, int marking) const;
 
