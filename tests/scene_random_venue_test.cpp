@@ -427,5 +427,25 @@ TEST(SceneRandomVenue, OuterLinesAndGoalCornersAreNoBall) {
   }
 }
 
+// A ball at rest on the field's corner (extremes #32 and #44 with the ball
+// moved there): the lines kept the round score from peaking, so only the
+// streak pass found it, (245, 97, 48) and (234, 90, 16), and an untracked
+// streak where markings meet was dropped whatever its color. One that
+// shows a whole ball's silhouette in the ball's colors is the ball.
+TEST(SceneRandomVenue, ABallAtRestOnTheFieldsCornerIsTheBall) {
+  const Venue venues[] = {
+      {32, -4513, -3008, {242, 89, 175}, {49, 176, 126}, {245, 201, 38}, {24, 47, 136}, {242, 76, 20},
+       {1.53, 0.89, 0.69}, 0.67, 1.50, 1.10, 2.44, -2.51, 0},
+      {44, -4508, -2985, {255, 139, 190}, {131, 204, 64}, {245, 201, 39}, {21, 41, 131}, {245, 85, 20},
+       {1.23, 1.02, 1.05}, 1.18, 0.78, 0.94, 1.06, -2.41, 0},
+  };
+  for (const Venue& v : venues) {
+    const SceneScore s = venueScore(v);
+    EXPECT_EQ(s.truth_balls, 1) << v.seed;
+    EXPECT_EQ(s.balls_matched, 1) << v.seed;
+    EXPECT_EQ(s.balls_detected, 1) << v.seed;
+  }
+}
+
 }  // namespace
 }  // namespace dv

@@ -146,9 +146,9 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   // 135) there); beside a pattern's dot, a lost robot's washed-out center.
   auto keepIfMarkerColored = [&](int i, int nearest) {
     if (nearest == kYellow || nearest == kPink)
-      marker_colored.push_back({i, nearest});
+      marker_colored.push_back({i, nearest, {}, false});
     else if (nearest != kField && !onMarking(blobs[i].at_ball) && !dotsAround(i))
-      marker_colored.push_back({i, -1});
+      marker_colored.push_back({i, -1, {}, false});
   };
   ColorVec field_sum;
   int field_n = 0;
@@ -272,11 +272,16 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // itself (view_stretch.h). Nor, where markings cross, a round blob in
     // a color no class explains: the crossing's false colors stay within a
     // ball's rim as often as not (a warm cast at gamma 1.6: (104, 67, 54)
-    // where the center circle meets the halfway line).
+    // where the center circle meets the halfway line). Nor where the blob
+    // shows a whole ball's round silhouette in the ball's colors: a ball at
+    // rest, which the streak pass finds as it finds any ball (at the field's
+    // corner the lines kept the round score from peaking: extreme #32, a
+    // streak blob of (245, 97, 48)); a line's or a corner's false color is
+    // no disc.
     const bool moved_along_track = c.track >= 0 && !c.kicked && ball_tracker.tracks()[c.track].history >= 2 &&
                                    dist(p, ball_tracker.tracks()[c.track].pos[1]) > 2 * opt.ball_radius;
     if ((streak || (unexpected && atCrossing(p))) && !moved_along_track && (onGoalWall(p) || line_colored) &&
-        !seenStretched(p))
+        !seenStretched(p) && !wholeBallSilhouette(i, color_judge))
       continue;
     c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
@@ -490,6 +495,12 @@ bool Detector::Impl::ballInImage(int i, ImagePx& px, double& radius_px) const {
   const FieldMm& p = blobs[i].at_ball;
   radius_px = ballRadiusPx(camera, {p.x, p.y, opt.ball_radius}, opt.ball_radius);
   return true;
+}
+
+bool Detector::Impl::wholeBallSilhouette(int i, const BallColorTest& judge) const {
+  ImagePx px, center;
+  double r;
+  return ballInImage(i, px, r) && ballSilhouetteCenter(frame_view, judge, px, r, center);
 }
 
 bool Detector::Impl::colorReachesBeyondRim(int i, const BallColorTest& judge) const {

@@ -312,6 +312,9 @@ struct Detector::Impl {
   // the rim; a ball alone shows none). False where the frame is not at
   // hand.
   bool colorReachesBeyondRim(int i, const BallColorTest& judge) const;
+  // Whether blob i shows one whole ball's silhouette in `judge`'s colors
+  // (ballSilhouetteCenter). False where the frame is not at hand.
+  bool wholeBallSilhouette(int i, const BallColorTest& judge) const;
   // Blob i seen as a ball: its place in the image (on the ball plane's
   // image of its raw position) and the ball's radius there (px); false
   // where the frame is not at hand or the camera does not see it.
