@@ -1,6 +1,7 @@
 #include "pipeline/streak_markings.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "pipeline/bayer_subsample.h"
 #include "pipeline/score_windows.h"
@@ -116,11 +117,14 @@ std::optional<float> MarkingMask::contrastToMarking(const cv::Mat& raw, BayerPat
     return true;
   };
   float there[2][3];
+  bool seen[2];
+  float nearer = std::numeric_limits<float>::max();
   for (int k = 0; k < 2; ++k) {
     FieldMm q;
-    if (!along((k == 0 ? -1 : 1) * kMarkingLookMm, q) || !discRgb(raw, bayer, q, there[k])) return std::nullopt;
+    seen[k] = along((k == 0 ? -1 : 1) * kMarkingLookMm, q) && discRgb(raw, bayer, q, there[k]);
+    if (seen[k]) nearer = std::min(nearer, colors.chromaDistance2(here, there[k]));
   }
-  float nearer = std::min(colors.chromaDistance2(here, there[0]), colors.chromaDistance2(here, there[1]));
+  if (!seen[0] && !seen[1]) return std::nullopt;
   // A thin line drifts across the mosaic's phase along it, so its false
   // color comes in stretches: the stretch in the candidate's phase may lie
   // beyond the nearest two (a touch line under tungsten at 1224 x 1024 made
@@ -134,8 +138,11 @@ std::optional<float> MarkingMask::contrastToMarking(const cv::Mat& raw, BayerPat
     }
   // Beyond the marking's own change along it (the light varies, the
   // phase drifts): a stretch between two others differs from each by less
-  // than they differ from each other.
-  return nearer - colors.chromaDistance2(there[0], there[1]);
+  // than they differ from each other. Where the image ends on one side
+  // that change is unknown, and the marking as far as the image shows it
+  // is the reference (a touch line's stretch 22 px from the image's edge,
+  // under tungsten, had been left to the fixed floor and passed).
+  return seen[0] && seen[1] ? nearer - colors.chromaDistance2(there[0], there[1]) : nearer;
 }
 
 }  // namespace dv

@@ -70,8 +70,8 @@ class MarkingMask {
   // The squared chroma distance (colors.chromaDistance2) of the color disc
   // (kColorRadiusMm) around plane point p from the same disc along
   // `marking`, the nearest of those kMarkingLookMm either way and on to
-  // kMarkingSpanMm, less the two nearest looks' own difference; nullopt
-  // where the two nearest do not lie in the image.
+  // kMarkingSpanMm, less the two nearest looks' own difference where both
+  // lie in the image; nullopt where neither does.
   std::optional<float> contrastToMarking(const cv::Mat& raw, BayerPattern bayer, const BlobColorGate& colors,
                                          FieldMm p, int marking) const;
 
