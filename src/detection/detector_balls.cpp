@@ -272,16 +272,17 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     // itself (view_stretch.h). Nor, where markings cross, a round blob in
     // a color no class explains: the crossing's false colors stay within a
     // ball's rim as often as not (a warm cast at gamma 1.6: (104, 67, 54)
-    // where the center circle meets the halfway line). Nor where the blob
-    // shows a whole ball's round silhouette in the ball's colors: a ball at
-    // rest, which the streak pass finds as it finds any ball (at the field's
-    // corner the lines kept the round score from peaking: extreme #32, a
-    // streak blob of (245, 97, 48)); a line's or a corner's false color is
-    // no disc.
+    // where the center circle meets the halfway line). Nor, on a marking,
+    // where the blob shows a whole ball's round silhouette in the ball's
+    // colors: a ball at rest, which the streak pass finds as it finds any
+    // ball (at the field's corner the lines kept the round score from
+    // peaking: extreme #32, a streak blob of (245, 97, 48)); a line's or a
+    // corner's false color is no disc. A goal's post, seen from above, may
+    // be one (extreme #676: the post's top read as a ball's silhouette).
     const bool moved_along_track = c.track >= 0 && !c.kicked && ball_tracker.tracks()[c.track].history >= 2 &&
                                    dist(p, ball_tracker.tracks()[c.track].pos[1]) > 2 * opt.ball_radius;
     if ((streak || (unexpected && atCrossing(p))) && !moved_along_track && (onGoalWall(p) || line_colored) &&
-        !seenStretched(p) && !wholeBallSilhouette(i, color_judge))
+        !seenStretched(p) && (onGoalWall(p) || !wholeBallSilhouette(i, color_judge)))
       continue;
     c.confidence = color_conf_used * strength * temporal;
     // Beyond full strength the stronger blob ranks first among equals.
