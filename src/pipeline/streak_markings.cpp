@@ -134,7 +134,8 @@ std::optional<float> MarkingMask::contrastToMarking(const cv::Mat& raw, BayerPat
     for (double sign : {-1.0, 1.0}) {
       FieldMm q;
       float rgb[3];
-      if (along(sign * d, q) && discRgb(raw, bayer, q, rgb)) nearer = std::min(nearer, colors.chromaDistance2(here, rgb));
+      if (along(sign * d, q) && discRgb(raw, bayer, q, rgb))
+        nearer = std::min(nearer, colors.chromaDistance2(here, rgb));
     }
   // Beyond the marking's own change along it (the light varies, the
   // phase drifts): a stretch between two others differs from each by less
