@@ -410,7 +410,11 @@ TEST(SceneRandomVenue, APaleDotOfARobotNotFoundIsNoBall) {
 // of goal and touch line, its streak 28 mm from the touch line on the
 // ball's plane and 15 on the ground. Moderate #470: a goal's back corner,
 // 160 mm up, 70 mm beyond the wall on the ball's plane (detector_impl.h:
-// a marking or wall is where the camera's ray meets it).
+// a marking or wall is where the camera's ray meets it). Extreme #597: a
+// touch line's stretch 22 px from the image's edge, which had faced only
+// the fixed floor (the stretches the image shows are the reference).
+// Extreme #676: a goal post's top, whose silhouette looks like a ball's
+// (ABallAtRestOnTheFieldsCornerIsTheBall: on a marking only).
 TEST(SceneRandomVenue, OuterLinesAndGoalCornersAreNoBall) {
   const Venue venues[] = {
       {849, -3122, -1332, {247, 109, 181}, {73, 184, 108}, {248, 179, 15}, {31, 61, 148}, {242, 78, 20},
@@ -419,6 +423,10 @@ TEST(SceneRandomVenue, OuterLinesAndGoalCornersAreNoBall) {
        {1.56, 0.85, 0.65}, 1.23, 1.43, 1.34, 2.67, -0.56, 1.82},
       {470, -1445, -2029, {238, 71, 169}, {52, 177, 123}, {241, 236, 75}, {87, 164, 235}, {250, 103, 20},
        {1.56, 0.94, 0.65}, 0.52, 1.50, 1.03, 1.88, 1.31, 1.92},
+      {597, -1289, 1941, {243, 93, 176}, {42, 174, 131}, {245, 205, 43}, {29, 56, 144}, {247, 95, 20},
+       {1.51, 0.86, 0.71}, 0.78, 1.51, 1.12, 1.53, -1.44, 0},
+      {676, -3690, -1926, {245, 100, 178}, {109, 196, 81}, {248, 178, 14}, {25, 50, 139}, {248, 97, 20},
+       {1.57, 1.13, 0.63}, 0.96, 1.35, 1.13, 1.83, 2.48, 1.75},
   };
   for (const Venue& v : venues) {
     const SceneScore s = venueScore(v, false);
