@@ -455,5 +455,29 @@ TEST(SceneRandomVenue, ABallAtRestOnTheFieldsCornerIsTheBall) {
   }
 }
 
+// Robots whose center made no blob (detector_unpeaked_centers.cpp), their
+// dots washed out under an over-exposed cast. Extreme #176 (tungsten,
+// exposure 1.34): a blue robot's pink dot, (240, 184, 186), scored below
+// the blob threshold as a disc and peaked only as a fast-ball streak;
+// beside a green and a pink blob it fills the pattern's third side.
+// Extreme #475 (a sun patch of 2.09 under a cold cast): a yellow robot's
+// center clipped white, (252, 253, 249), beside three teal dots, one a
+// streak; no hue is left to place it, so its three sides are judged as a
+// full pattern's four are (the brighter team).
+TEST(SceneRandomVenue, WashedDotsThatPeakedAsStreaksAreSides) {
+  const SceneScore washed_pink = venueScore({176, -2861, -924, {241, 83, 173}, {138, 206, 59}, {250, 167, 2},
+                                             {68, 130, 206}, {241, 72, 20}, {1.57, 1.11, 0.63}, 0.60, 0.71,
+                                             1.34, 2.27, 0.80, 0});
+  EXPECT_GE(washed_pink.matched, 14);  // 13 without the streak as a side
+  EXPECT_EQ(washed_pink.precision(), 1.0);
+  EXPECT_EQ(washed_pink.idAccuracy(), 1.0);
+  const SceneScore white_center = venueScore({475, -2677, -1462, {247, 107, 180}, {30, 170, 140}, {241, 231, 71},
+                                              {58, 110, 189}, {241, 75, 20}, {0.72, 0.83, 1.67}, 1.12, 1.16,
+                                              1.06, 2.98, 2.83, 2.09});
+  EXPECT_EQ(white_center.recall(), 1.0);
+  EXPECT_EQ(white_center.precision(), 1.0);
+  EXPECT_EQ(white_center.idAccuracy(), 1.0);
+}
+
 }  // namespace
 }  // namespace dv

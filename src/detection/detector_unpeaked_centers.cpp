@@ -109,6 +109,17 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
     const FrameBlob& b = blobs[i];
     return b.valid && !b.streak && !b.weak && b.robot < 0;
   };
+  // A dot that peaked only in the fast-ball pass (washed out, it scored
+  // below the blob threshold as a disc; its chroma run still peaked as a
+  // streak) may be a side: extreme #176, a pink of (240, 184, 186) beside a
+  // green and a pink blob. A streak is no part of a hypothesis of the
+  // first search, but here two free side blobs and the frame's center
+  // vouch for the slot it fills; a ball lies no nearer a robot's center
+  // than its top's radius and fills no slot.
+  auto streakDot = [&](int i) {
+    const FrameBlob& b = blobs[i];
+    return b.valid && b.streak && b.robot < 0;
+  };
   // Two side slots lie this far apart on the robot top at most.
   const double reach = 2 * RobotPatternGeometry::kSideBlobDistance + opt.weak_side_tolerance;
   std::array<int, kMaxPartners> partner;
@@ -120,6 +131,9 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
       const int b = static_cast<int>(hit.first);
       if (b != a && k < kMaxPartners && free(b)) partner[k++] = b;
     }
+    // (Streaks are outside the index; they are few.)
+    for (int b = 0; b < n_strong && k < kMaxPartners; ++b)
+      if (streakDot(b) && detector_detail::dist(blobs[a].at_ref, blobs[b].at_ref) < reach) partner[k++] = b;
     // The best pattern blob a takes part in (four sides before three).
     Hypothesis best;
     float best_rgb[3] = {0, 0, 0};
@@ -211,7 +225,15 @@ bool Detector::Impl::patternAroundSides(int a, int sa, int b, int sb, const int*
   for (int i = 1; i < h.n; ++i) sides += blobs[h.blob[i]].brightness();
   if (seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kMarkerBrightness * sides / (h.n - 1)) return false;
   const ClippedColor center(seen.rgb);
-  bool placed = h.n == kPatternSlots ? teamOfFullPattern(center, &h.team) : teamColored(center, &h.team);
+  // A center clipped white has no hue left to be nearer to a team: with
+  // three sides too it is judged as a full pattern's is, the brighter team
+  // (extreme #475, (252, 253, 249) by three teal dots, one a streak), but
+  // not where markings cross (their arms' false colors make patterns).
+  FieldMm at_ball;
+  const bool white_center = center.white() && alongRay(h.pose.position, ref_height, opt.ball_radius, at_ball) &&
+                            !atCrossing(at_ball);
+  bool placed = h.n == kPatternSlots || white_center ? teamOfFullPattern(center, &h.team)
+                                                     : teamColored(center, &h.team);
   // learnUnseenTeam probes for the full patterns whose unclipped center
   // neither team's class places.
   if (probing_unseen_team) placed = !placed && h.n == kPatternSlots && !center.clipped();
