@@ -548,14 +548,8 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
       continue;
     // Nearest to no marker, its color vouches least: the ring must be
     // carpet all round. (A robot not found kept a yellow-green dot, clipped
-    // pale in a sun patch, whose ring was half its top.) There the ring
-    // may be judged by darkness alone, no robot's top in it: the sun that
-    // clipped the ball lights the carpet around it off the field class
-    // (extreme #994: not one of its 24 samples nearest the field; #1006,
-    // 22), and lights no robot's top to a third of the ball's brightness.
-    double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
-    if (m.cls < 0)
-      carpet = std::max(carpet, carpetAroundBall(frame_view, nullptr, px, r, opt.ball_radius, b.brightness()));
+    // pale in a sun patch, whose ring was half its top.)
+    const double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
     if (carpet < (m.cls >= 0 ? kMinCarpetAroundBall : 1.0)) continue;
     BallCandidate c;
     c.blob = m.blob;
