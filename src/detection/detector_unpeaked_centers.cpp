@@ -131,7 +131,7 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
       const int b = static_cast<int>(hit.first);
       if (b != a && k < kMaxPartners && free(b)) partner[k++] = b;
     }
-    // (Streaks are outside the index; they are few.)
+    // (Streaks are kept out of the index: looked for here.)
     for (int b = 0; b < n_strong && k < kMaxPartners; ++b)
       if (streakDot(b) && detector_detail::dist(blobs[a].at_ref, blobs[b].at_ref) < reach) partner[k++] = b;
     // The best pattern blob a takes part in (four sides before three).
