@@ -26,7 +26,7 @@ std::vector<unsigned char> encoded(const std::string& ext, int w, int h, int cha
 }
 
 TEST(ImageHeader, ReadsTheSizeOfEveryFormat) {
-  for (const char* ext : {".png", ".jpg", ".pgm", ".ppm", ".bmp"}) {
+  for (const char* ext : {".png", ".jpg", ".pgm", ".ppm", ".bmp", ".tif"}) {
     const int channels = std::string(ext) == ".pgm" ? 1 : 3;
     const auto bytes = encoded(ext, 37, 21, channels);
     const auto size = claimedImageSize(bytes.data(), bytes.size());
@@ -71,7 +71,7 @@ void putBig32(unsigned char* p, uint32_t v) {
   for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (24 - 8 * i));
 }
 
-// Each file claims 40000x40000 pixels (1.6 Gpx, about 4.8 GB decoded); the
+// Each file (PNG, PGM, BMP, JPEG, TIFF) claims 40000x40000 pixels (1.6 Gpx, about 4.8 GB decoded); the
 // valid frame after them is still delivered.
 TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
   auto png = encoded(".png", 8, 8, 3);
@@ -95,18 +95,49 @@ TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
   }
   ASSERT_TRUE(patched);
   write("a_3.jpg", jpg);
-  write("a_4.png", encoded(".png", 8, 8, 3));
+  auto tif = encoded(".tif", 8, 8, 3);
+  ASSERT_EQ(tif[0], 'I');  // OpenCV writes little-endian TIFF
+  const size_t ifd = tif[4] | tif[5] << 8 | tif[6] << 16 | size_t(tif[7]) << 24;
+  int sizes = 0;
+  for (size_t i = 0, n = tif[ifd] | tif[ifd + 1] << 8; i < n; ++i) {
+    unsigned char* e = tif.data() + ifd + 2 + 12 * i;
+    if ((e[0] | e[1] << 8) != 256 && (e[0] | e[1] << 8) != 257) continue;
+    e[8] = 40000 & 0xff, e[9] = 40000 >> 8, e[10] = e[11] = 0;  // SHORT or LONG alike
+    ++sizes;
+  }
+  ASSERT_EQ(sizes, 2);
+  write("a_4.tif", tif);
+  write("a_5.png", encoded(".png", 8, 8, 3));
 
   auto src = openFrameSource(dir_.string(), {});
   Frame f;
   std::vector<uint32_t> delivered;
   while (src->next(f)) delivered.push_back(f.index);
-  EXPECT_EQ(delivered, std::vector<uint32_t>{4});
-  ASSERT_EQ(src->skipped().size(), 4u);
+  EXPECT_EQ(delivered, std::vector<uint32_t>{5});
+  ASSERT_EQ(src->skipped().size(), 5u);
   for (const auto& skip : src->skipped()) {
     EXPECT_NE(skip.reason.find("claims 40000x40000 pixels"), std::string::npos) << skip.name << ": " << skip.reason;
     EXPECT_NE(skip.reason.find("64 Mpx"), std::string::npos) << skip.reason;
   }
+}
+
+
+// Found by fuzz_image_decode: "P6 01281%637200 5700": OpenCV's PNM reader
+// stepped over the '%' and allocated 1281 x 637200 pixels of 16 bits
+// (4.9 GB), a size the header check could not read. A PNM header that is
+// not decimal numbers is refused; the frame after it still comes.
+TEST_F(ImageHeaderSourceTest, DamagedPnmHeaderIsRefusedBeforeTheDecoder) {
+  const std::string damaged = "P6 01281%637200 5700\x83" "012890";
+  write("a_0.pgm", std::vector<unsigned char>(damaged.begin(), damaged.end()));
+  write("a_1.png", encoded(".png", 8, 8, 3));
+  auto src = openFrameSource(dir_.string(), {});
+  Frame f;
+  std::vector<uint32_t> delivered;
+  while (src->next(f)) delivered.push_back(f.index);
+  EXPECT_EQ(delivered, std::vector<uint32_t>{1});
+  ASSERT_EQ(src->skipped().size(), 1u);
+  EXPECT_NE(src->skipped()[0].reason.find("damaged PNM header"), std::string::npos) << src->skipped()[0].reason;
+  EXPECT_NE(src->skipped()[0].name.find("a_0.pgm"), std::string::npos) << src->skipped()[0].name;
 }
 
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -209,12 +210,19 @@ bool ImageSequenceSource::next(Frame& f) {
       recordSkip(path, why);
       continue;
     }
-    if (!acceptedImageFormat(file_bytes_.data(), size)) {
+    const char* format = acceptedImageFormat(file_bytes_.data(), size);
+    if (!format) {
       recordSkip(path, "not a PNG, JPEG, PNM, BMP or TIFF image (by its first bytes)");
       continue;
     }
-    if (const auto claimed = claimedImageSize(file_bytes_.data(), size);
-        claimed && tooManyPixels(*claimed)) {
+    const auto claimed = claimedImageSize(file_bytes_.data(), size);
+    // OpenCV's PNM reader steps over stray characters in the header and
+    // would read a size this check never saw (and allocate it).
+    if (!claimed && std::strcmp(format, "PNM") == 0) {
+      recordSkip(path, "damaged PNM header: the width and height are not decimal numbers");
+      continue;
+    }
+    if (claimed && tooManyPixels(*claimed)) {
       recordSkip(path, "the header claims " + std::to_string(claimed->width) + "x" +
                            std::to_string(claimed->height) + " pixels, above the limit of " +
                            std::to_string(kMaxImagePixels >> 20) + " Mpx");

@@ -65,6 +65,29 @@ std::optional<ImageSize> jpegSize(const unsigned char* b, size_t size) {
   return std::nullopt;
 }
 
+// TIFF: the first image file directory's ImageWidth (256) and ImageLength
+// (257) entries, SHORT or LONG, in the byte order the header names.
+std::optional<ImageSize> tiffSize(const unsigned char* b, size_t size) {
+  const bool little = b[0] == 'I';
+  auto read = [&](size_t at, int n) -> uint32_t {
+    uint32_t v = 0;
+    for (int i = 0; i < n; ++i) v |= uint32_t(b[at + i]) << (8 * (little ? i : n - 1 - i));
+    return v;
+  };
+  const size_t ifd = read(4, 4);
+  if (ifd + 2 > size) return std::nullopt;
+  const size_t entries = read(ifd, 2);
+  int64_t width = -1, height = -1;
+  for (size_t i = 0; i < entries && ifd + 2 + 12 * (i + 1) <= size; ++i) {
+    const size_t e = ifd + 2 + 12 * i;
+    const uint32_t tag = read(e, 2), type = read(e + 2, 2);
+    if ((tag != 256 && tag != 257) || (type != 3 && type != 4)) continue;
+    (tag == 256 ? width : height) = type == 3 ? read(e + 8, 2) : read(e + 8, 4);
+  }
+  if (width < 0 || height < 0) return std::nullopt;
+  return ImageSize{width, height};
+}
+
 }  // namespace
 
 const char* acceptedImageFormat(const unsigned char* b, size_t size) {
@@ -90,6 +113,7 @@ std::optional<ImageSize> claimedImageSize(const unsigned char* b, size_t size) {
     const int64_t w = littleEndian32(b + 18), h = littleEndian32(b + 22);
     return ImageSize{w < 0 ? -w : w, h < 0 ? -h : h};
   }
+  if (size >= 8 && (std::memcmp(b, "II*\0", 4) == 0 || std::memcmp(b, "MM\0*", 4) == 0)) return tiffSize(b, size);
   return std::nullopt;
 }
 

@@ -28,9 +28,9 @@ inline bool tooManyPixels(const ImageSize& s) {
 // content, and its DICOM reader aborts the process on a damaged file).
 const char* acceptedImageFormat(const unsigned char* bytes, size_t size);
 
-// The size in a PNG, JPEG, PGM/PPM/PBM or BMP header; nullopt when the
-// format is another or the header is too damaged to name one (the decoder
-// then decides).
+// The size in a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF header; nullopt when the
+// format is another or the header is too damaged to name one (the frame
+// sources then refuse a PNM, and leave the others to the decoder).
 std::optional<ImageSize> claimedImageSize(const unsigned char* bytes, size_t size);
 
 }  // namespace dv
