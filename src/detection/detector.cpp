@@ -10,6 +10,7 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   ball_area = field.withBoundary();
   setOptions(o);
   blobs.reserve(4096);
+  streak_blobs.reserve(4096);
   hyps.reserve(1024);
   robots.reserve(64);
   robot_positions.reserve(64);

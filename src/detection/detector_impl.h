@@ -67,6 +67,7 @@ struct Detector::Impl {
   ColorMap color_map;                 // references -> this camera's colors
 
   std::vector<FrameBlob> blobs;
+  std::vector<int> streak_blobs;  // indices into blobs, for the unpeaked-center search
   BlobIndex index;       // the blobs
   BlobIndex weak_index;  // the weak peaks, blob n_strong + i at point i
   int n_strong = 0;

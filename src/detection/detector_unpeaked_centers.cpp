@@ -120,6 +120,10 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
     const FrameBlob& b = blobs[i];
     return b.valid && b.streak && b.robot < 0;
   };
+  // (Streaks are kept out of the index: listed once here.)
+  streak_blobs.clear();
+  for (int b = 0; b < n_strong; ++b)
+    if (blobs[b].valid && blobs[b].streak) streak_blobs.push_back(b);
   // Two side slots lie this far apart on the robot top at most.
   const double reach = 2 * RobotPatternGeometry::kSideBlobDistance + opt.weak_side_tolerance;
   std::array<int, kMaxPartners> partner;
@@ -131,9 +135,9 @@ int Detector::Impl::robotsAroundUnpeakedCenters() {
       const int b = static_cast<int>(hit.first);
       if (b != a && k < kMaxPartners && free(b)) partner[k++] = b;
     }
-    // (Streaks are kept out of the index: looked for here.)
-    for (int b = 0; b < n_strong && k < kMaxPartners; ++b)
-      if (streakDot(b) && detector_detail::dist(blobs[a].at_ref, blobs[b].at_ref) < reach) partner[k++] = b;
+    for (const int b : streak_blobs)
+      if (k < kMaxPartners && streakDot(b) && detector_detail::dist(blobs[a].at_ref, blobs[b].at_ref) < reach)
+        partner[k++] = b;
     // The best pattern blob a takes part in (four sides before three).
     Hypothesis best;
     float best_rgb[3] = {0, 0, 0};
