@@ -135,6 +135,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   searchAgainWithFrameColors();
   learnUnseenTeam();
   robotsAroundUnpeakedCenters();
+  robotsAroundLoneSides();
   dropCentersAloneAtCrossings();
   identifyRobots();
   for (auto& r : robots) {

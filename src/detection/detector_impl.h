@@ -170,6 +170,16 @@ struct Detector::Impl {
   // `blobs`.
   // Returns how many robots joined `robots`.
   int robotsAroundUnpeakedCenters();
+  // Robots of which only a side dot peaked: over-exposed under uneven
+  // light, pale centers and pinks wash toward the lines' white and keep
+  // too little chroma to peak, while a green keeps it (extreme #40: three
+  // robots, each one green blob). Around a free green or pink blob the
+  // center is the brightest place on the circle of the side distance;
+  // where no blob peaked there and it reads team-colored (teamColored), a
+  // center blob is appended there and the search judges it as any center
+  // (HypothesisSearch::bestAt: with one side blob, every other slot must
+  // show a marker). Returns how many robots joined `robots`.
+  int robotsAroundLoneSides();
   // Where the searches found one team only, the other may be there with
   // centers that no class places (sky blue under a warm cast at saturation
   // 0.5 reads as gray as the lines). The full patterns around such
