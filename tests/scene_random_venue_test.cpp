@@ -480,10 +480,10 @@ TEST(SceneRandomVenue, WashedDotsThatPeakedAsStreaksAreSides) {
 }
 
 // Extreme venue #40 (exposure 1.38 under 2.3 : 1 uneven light at
-// saturation 0.43): three robots each peaked as one green blob, their
-// centers and pinks washed toward the lines' white. Around a lone green or
-// pink blob the center is the brightest place on the ring of the side
-// distance (detector_lone_sides.cpp).
+// saturation 0.43): of four robots lost, three peaked as one green blob
+// each and one as two, their centers and pinks washed toward the lines'
+// white. Around a lone green or pink blob the center is the brightest
+// place on the ring of the side distance (detector_lone_sides.cpp).
 TEST(SceneRandomVenue, ARobotOfWhichOnlyOneDotPeakedIsFound) {
   const SceneScore s = venueScore({40, -3471, 678, {246, 105, 180}, {44, 175, 129}, {244, 207, 45}, {88, 166, 237},
                                    {242, 75, 20}, {1.19, 1.15, 1.10}, 0.43, 0.88, 1.38, 2.33, -2.33, 0});
