@@ -20,8 +20,9 @@ int Detector::Impl::robotsAroundLoneSides() {
     // The center lies on the circle of the side distance around the dot:
     // where that circle is brightest (a washed center is as bright as a
     // marker; the rest of the circle crosses the dark top or the carpet).
-    // A disc's mean at each step, read around the step's pixel (a lattice
-    // on the field would cost a projection per point).
+    // Each step's brightness: the mean of nine points over the probe's disc
+    // around the step's pixel (a lattice on the field would cost a
+    // projection per point).
     const double width = frame_view.image->cols, height = frame_view.image->rows;
     const auto dot_px = camera.fieldToImage({side.at_ref.x, side.at_ref.y, ref_height});
     const auto rim_px = camera.fieldToImage({side.at_ref.x + opt.probe_radius, side.at_ref.y, ref_height});
@@ -36,9 +37,9 @@ int Detector::Impl::robotsAroundLoneSides() {
       bright[i] = 0;
       if (px && px->u >= r_px && px->v >= r_px && px->u < width - r_px && px->v < height - r_px) {
         for (int k = 0; k < 9; ++k) {
-          const double a = kPi / 4 * k, r = k == 8 ? 0 : r_px;
+          const double phi = kPi / 4 * k, r = k == 8 ? 0 : r_px;
           float rgb[3];
-          frameRgbAt(frame_view, px->u + r * std::cos(a), px->v + r * std::sin(a), rgb);
+          frameRgbAt(frame_view, px->u + r * std::cos(phi), px->v + r * std::sin(phi), rgb);
           bright[i] += (rgb[0] + rgb[1] + rgb[2]) / 9;
         }
       }
