@@ -60,6 +60,15 @@ class ImageHeaderSourceTest : public ::testing::Test {
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
+  // The folder read through a frame source: the indices of the frames it
+  // delivered; `src` keeps the source for its skips.
+  std::vector<uint32_t> readAll(std::unique_ptr<FrameSource>& src) const {
+    src = openFrameSource(dir_.string(), {});
+    Frame f;
+    std::vector<uint32_t> delivered;
+    while (src->next(f)) delivered.push_back(f.index);
+    return delivered;
+  }
   void write(const std::string& name, const std::vector<unsigned char>& bytes) const {
     std::ofstream(dir_ / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
                                                        std::streamsize(bytes.size()));
@@ -109,10 +118,8 @@ TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
   write("a_4.tif", tif);
   write("a_5.png", encoded(".png", 8, 8, 3));
 
-  auto src = openFrameSource(dir_.string(), {});
-  Frame f;
-  std::vector<uint32_t> delivered;
-  while (src->next(f)) delivered.push_back(f.index);
+  std::unique_ptr<FrameSource> src;
+  const std::vector<uint32_t> delivered = readAll(src);
   EXPECT_EQ(delivered, std::vector<uint32_t>{5});
   ASSERT_EQ(src->skipped().size(), 5u);
   for (const auto& skip : src->skipped()) {
@@ -130,10 +137,8 @@ TEST_F(ImageHeaderSourceTest, DamagedPnmHeaderIsRefusedBeforeTheDecoder) {
   const std::string damaged = "P6 01281%637200 5700\x83" "012890";
   write("a_0.pgm", std::vector<unsigned char>(damaged.begin(), damaged.end()));
   write("a_1.png", encoded(".png", 8, 8, 3));
-  auto src = openFrameSource(dir_.string(), {});
-  Frame f;
-  std::vector<uint32_t> delivered;
-  while (src->next(f)) delivered.push_back(f.index);
+  std::unique_ptr<FrameSource> src;
+  const std::vector<uint32_t> delivered = readAll(src);
   EXPECT_EQ(delivered, std::vector<uint32_t>{1});
   ASSERT_EQ(src->skipped().size(), 1u);
   EXPECT_NE(src->skipped()[0].reason.find("damaged PNM header"), std::string::npos) << src->skipped()[0].reason;
@@ -157,10 +162,8 @@ TEST_F(ImageHeaderSourceTest, OtherFormatsAndDicomNeverReachADecoder) {
   const std::string webp = "RIFF\x24\0\0\0WEBPVP8 " + std::string(40, 'x');
   write("a_1.png", std::vector<unsigned char>(webp.begin(), webp.end()));
   write("a_2.tif", encoded(".tiff", 8, 8, 3));
-  auto src = openFrameSource(dir_.string(), {});
-  Frame f;
-  std::vector<uint32_t> delivered;
-  while (src->next(f)) delivered.push_back(f.index);
+  std::unique_ptr<FrameSource> src;
+  const std::vector<uint32_t> delivered = readAll(src);
   EXPECT_EQ(delivered, std::vector<uint32_t>{2});  // the TIFF
   ASSERT_EQ(src->skipped().size(), 2u);
   for (const auto& skip : src->skipped())
