@@ -492,5 +492,19 @@ TEST(SceneRandomVenue, ARobotOfWhichOnlyOneDotPeakedIsFound) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Moderate venue #994 with the ball out of view: a sun patch of 2.1 under
+// a cold cast lights the carpet near clipping, and its texture peaks in
+// green and pink. Around such a peak the ring is bright all round: no
+// robot's dark top, so no robot of a lone side (one false robot of the
+// first search stays, open; the lone-side stage without its dark-top test
+// made a second).
+TEST(SceneRandomVenue, ALoneSideOnSunLitCarpetMakesNoRobot) {
+  const SceneScore s = venueScore({994, -676, 1344, {252, 129, 187}, {61, 180, 117}, {250, 166, 1}, {70, 133, 209},
+                                   {254, 115, 20}, {0.75, 1.10, 1.64}, 0.90, 1.53, 1.14, 1.44, 0.10, 2.10},
+                                  false);
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_LE(s.detected - s.matched, 1);
+}
+
 }  // namespace
 }  // namespace dv

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "detection/detector_impl.h"
+#include "detection/ring_orientation.h"
 
 namespace dv {
 
@@ -61,6 +62,10 @@ int Detector::Impl::robotsAroundLoneSides() {
     const SeenColor seen = seenDiscColor(frame_view, camera, {at.x, at.y, ref_height}, opt.probe_radius);
     Team team;
     if (seen.share < 1 || !teamColored(ClippedColor(seen.rgb), &team)) continue;
+    // On a robot's dark top: a sun-lit carpet is bright all round, and its
+    // texture's peaks fill a pattern (no-ball moderate #994).
+    const auto top = ringDarkest(frame_view, camera, {at.x, at.y, ref_height});
+    if (!top || seen.rgb[0] + seen.rgb[1] + seen.rgb[2] < kDotOverTop * *top) continue;
     // The blob list's reserve bounds it (no allocation per frame).
     const FrameBlob center = centerBlobAt(at, seen.rgb);
     if (!center.valid || blobs.size() == blobs.capacity()) continue;

@@ -10,8 +10,6 @@
 namespace dv {
 namespace {
 
-constexpr float kDotOverTop = 2.f;
-
 double slotAngle(int slot) {
   const FieldMm o = patternOffset(slot);
   return std::atan2(o.y, o.x);

@@ -14,6 +14,10 @@ namespace dv {
 
 // Points read along the ring (5 degrees apart).
 inline constexpr int kRingPoints = 72;
+// A robot's dots are at least this many times as bright as its top between
+// them (4.9 or more on the sweeps' robots; bare carpet's texture 1.3, 3.1
+// where a line crosses it).
+inline constexpr float kDotOverTop = 2.f;
 
 // The orientation (rad) that puts all four side slots of a robot centered
 // at `center` (on the plane z = center.z) on bright ring points, where
