@@ -175,8 +175,10 @@ struct Detector::Impl {
   // too little chroma to peak, while a green keeps it (extreme #40: three
   // robots, each one green blob). Around a free green or pink blob the
   // center is the brightest place on the circle of the side distance;
-  // where no blob peaked there and it reads team-colored (teamColored), a
-  // center blob is appended there and the search judges it as any center
+  // where no blob peaked there, it reads team-colored (teamColored) and it
+  // lies on a dark top (kDotOverTop times the ring's darkest point: a
+  // sun-lit carpet's texture is bright all round), a center blob is
+  // appended there and the search judges it as any center
   // (HypothesisSearch::bestAt: with one side blob, every other slot must
   // show a marker). Returns how many robots joined `robots`.
   int robotsAroundLoneSides();
