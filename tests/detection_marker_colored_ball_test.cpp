@@ -8,6 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "detection/frame_blob.h"
 #include "detection/marker_colored_ball.h"
 
 namespace dv {
@@ -67,14 +68,43 @@ TEST(MarkerColoredBall, ACenterDotOnARobotsTopStandsOnNoCarpet) {
 
 TEST(MarkerColoredBall, WithoutClassesACarpetOfAnyColorStandsAroundTheBall) {
   // Carpet the frame's classes would call yellow (a cold cast's pale yellow
-  // centers lie near it): by color no carpet, by darkness no robot top.
-  cv::Mat image(200, 200, CV_8UC3, bgr(kYellowDot) * 0.6);
+  // centers lie near it) up to a robot's reach, the field's beyond: by
+  // color no carpet, by darkness no robot top.
+  cv::Mat image = carpet();
+  cv::circle(image, {100, 100}, static_cast<int>(70 / kBallRadiusMm * kRadiusPx), bgr(kYellowDot) * 0.6, cv::FILLED);
   cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kOrangeBall), cv::FILLED, cv::LINE_AA);
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kOrangeBall[0] + kOrangeBall[1] + kOrangeBall[2];
   const FrameColors colors = paintedColors();
   EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
   EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+}
+
+// The ring is the carpet where it looks like the carpet beyond a robot's
+// reach (105 mm), whatever the classes say and however dark it is beside
+// the ball: a red ball on a dark carpet, a lit carpet clipped to a team's
+// color. A robot's dark top is not that carpet.
+TEST(MarkerColoredBall, ACarpetLikeTheCarpetBeyondARobotsReachIsCarpet) {
+  const float dark[3] = {20, 40, 16};
+  cv::Mat image(200, 200, CV_8UC3, bgr(dark));
+  cv::circle(image, {100, 100}, static_cast<int>(kRadiusPx), bgr(kOrangeBall), cv::FILLED, cv::LINE_AA);
+  const FrameView frame{&image, BayerPattern::None};
+  const float brightness = kOrangeBall[0] + kOrangeBall[1] + kOrangeBall[2];
+  ASSERT_LT(dark[0] + dark[1] + dark[2], kTopBrightness * brightness);
+  const FrameColors colors = paintedColors();
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+  EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+
+  cv::Mat blue(200, 200, CV_8UC3, bgr(kBlueDot));
+  cv::circle(blue, {100, 100}, static_cast<int>(kRadiusPx), bgr(kYellowDot), cv::FILLED, cv::LINE_AA);
+  const FrameView lit{&blue, BayerPattern::None};
+  EXPECT_EQ(carpetAroundBall(lit, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 1.0);
+
+  // The same dark carpet around a robot's top: the ring is the top.
+  cv::circle(image, {100, 100}, static_cast<int>(85 / kBallRadiusMm * kRadiusPx), bgr(kTop), cv::FILLED);
+  cv::circle(image, {100, 100}, static_cast<int>(25 / kBallRadiusMm * kRadiusPx), bgr(kOrangeBall), cv::FILLED);
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+  EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
 }
 
 TEST(MarkerColoredBall, ALineBesideTheBallLeavesMostOfItsRingOnCarpet) {

@@ -494,6 +494,36 @@ const std::vector<Condition>& conditions() {
          s.materials.yellow = {244, 210, 48};
          s.materials.blue = {85, 161, 232};
        }},
+      // A ball in a sun patch under a warm cast at saturation 0.4, (239,
+      // 169, 121), nearer the yellow class than any other, is judged as a
+      // marker-colored ball, which must stand on the carpet; the frame had
+      // no carpet peak, and the sun-lit ring lay nearer the teams' classes
+      // than the field's (ball 0.000 at 1224 x 1024). The ring is judged by
+      // the carpet beside the lines (SceneColorSweepSunBall) and by the
+      // carpet beyond a robot's reach around the ball (carpetAroundBall):
+      // 1.000 at both sizes, robots too.
+      {"warm_saturation_0.4_gamma_1.2_sun_over_the_ball", warmDesaturatedSunOverTheBall},
+      // Drawn at random within the ranges: tungsten, saturation
+      // 0.4, amber centers, a yellow-green. The frame showed no sample of
+      // the field class, its reference 57 from the carpet, and the
+      // washed-out ball lay 1.27 of the yellow class's reaches from it: too
+      // near to be a shade no class explains, too far to be yellow's (ball
+      // 0.250 at 1224 x 1024). Taking the ring's color for the carpet held
+      // it, but under gamma 0.6 a robot's top is no darker than a third of
+      // its center, and in H.264 nine false balls came of it. The carpet
+      // beyond a robot's reach (carpetAroundBall) holds it: 1.000 at both
+      // sizes.
+      {"tungsten_saturation_0.4_amber_yellow_green_uneven", [](SceneSpec& s, int) {
+         cast(s, {1.54, 0.93, 0.67}, 0.4, 0.88);
+         s.lighting.exposure = 1.06;
+         s.lighting.uneven_ratio = 1.83;
+         s.lighting.uneven_direction = -0.19;
+         s.materials.pink = {236, 65, 167};
+         s.materials.green = {96, 192, 91};
+         s.materials.yellow = {249, 175, 11};
+         s.materials.blue = {47, 91, 173};
+         s.materials.ball = {253, 113, 20};
+       }},
   };
   return list;
 }
@@ -590,8 +620,9 @@ TEST(SceneColorSweepFarTilt, WeakCenterBesideASideBlobAndNoPaleYellowBall) {
 // its reference, 52 from the carpet, the sun-lit ring around the ball lay
 // nearer the teams' classes, and no ring sample counted as carpet. The
 // ring is now judged with the carpet the pixel stage reads beside the
-// lines: without that these placements lose the ball (placement 0 still
-// does, the open condition below).
+// lines: without that these placements lose the ball. (Placement 0 lost
+// it until the carpet beyond a robot's reach around the ball counted as
+// well: carpetAroundBall.)
 TEST(SceneColorSweepSunBall, TheRingAroundALitBallIsJudgedByTheCarpetBesideTheLines) {
   for (int k : {1, 2, 3}) {
     SceneScore s;
@@ -696,38 +727,9 @@ const std::vector<Condition>& openConditions() {
          s.lighting.uneven_ratio = 3.0;
          s.lighting.uneven_direction = 1.0;
        }},
-      // A ball in a sun patch under a warm cast at saturation 0.4, (239,
-      // 169, 121), nearer the yellow class than any other, is judged as a
-      // marker-colored ball, which must stand on the carpet. The frame has
-      // no field sample, the field class is still its reference, 52 from
-      // the carpet, and the sun-lit ring lies nearer the teams' classes: no
-      // carpet at all (ball 0.000 at 1224 x 1024, 1.000 at 2448 x 2048;
-      // robots 0.977 and 0.989, not looked at). The ring is now judged
-      // with the carpet beside the lines: 0.750 at 1224 x 1024
-      // (SceneColorSweepSunBall); placement 0 still loses it.
-      {"warm_saturation_0.4_gamma_1.2_sun_over_the_ball", warmDesaturatedSunOverTheBall},
       // See SceneColorSweepWashedLemon (recall 0.773..0.909 at 1224 x 1024,
       // 0.818..0.909 at 2448 x 2048 over the four placements).
       {"tungsten_exposure_1.4_saturation_0.4_lemon_navy", tungstenExposedWashedLemonNavy},
-      // Drawn at random within the ranges: tungsten, saturation
-      // 0.4, amber centers, a yellow-green (ball 0.250 at 1224 x 1024). The
-      // frame showed no sample of the field class, its reference 57 from
-      // the carpet, and the washed-out ball lay 1.27 of the yellow class's
-      // reaches from it: too near to be a shade no class explains, too far
-      // to be yellow's. Taking the ring's color for the carpet there held
-      // it, but under gamma 0.6 a robot's top is no darker than a third of
-      // its center, and in H.264 nine false balls came of it.
-      {"tungsten_saturation_0.4_amber_yellow_green_uneven", [](SceneSpec& s, int) {
-         cast(s, {1.54, 0.93, 0.67}, 0.4, 0.88);
-         s.lighting.exposure = 1.06;
-         s.lighting.uneven_ratio = 1.83;
-         s.lighting.uneven_direction = -0.19;
-         s.materials.pink = {236, 65, 167};
-         s.materials.green = {96, 192, 91};
-         s.materials.yellow = {249, 175, 11};
-         s.materials.blue = {47, 91, 173};
-         s.materials.ball = {253, 113, 20};
-       }},
   };
   return list;
 }

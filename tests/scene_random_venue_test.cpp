@@ -506,5 +506,36 @@ TEST(SceneRandomVenue, ALoneSideOnSunLitCarpetMakesNoRobot) {
   EXPECT_LE(s.detected - s.matched, 1);
 }
 
+// A ball's ring is the carpet where it looks like the carpet beyond the
+// top of a robot the ball would be the center of (carpetAroundBall), in
+// whatever light the ball has. Extreme #309: a red ball on a carpet so dark
+// (gamma 1.50, exposure 0.92) that the ring is darker than a robot's top
+// may be beside the ball. Extreme #994: a sun patch (2.10) under a cold
+// cast clips the carpet around a pale ball to the sky-blue centers' color.
+// Extreme #1092: a sun patch (2.14) at exposure 1.40 lights the carpet
+// toward the blue centers' color too. Moderate #1092 with its ball out of
+// view: a pink side dot of a robot not found, its ring on the robot's top,
+// the ring beyond crossing that top and a neighbour's, is no ball (the
+// carpet beyond must be what most of that ring shows).
+TEST(SceneRandomVenue, TheCarpetBeyondARobotsReachTellsTheBallsRing) {
+  const Venue venues[] = {
+      {309, -2107, -1834, {243, 90, 175}, {128, 203, 66}, {248, 180, 16}, {22, 43, 133}, {249, 100, 20},
+       {1.54, 0.80, 0.67}, 0.58, 1.50, 0.92, 2.46, 1.66, 0},
+      {994, -676, 1344, {252, 129, 187}, {61, 180, 117}, {250, 166, 1}, {70, 133, 209}, {254, 115, 20},
+       {0.75, 1.10, 1.64}, 0.90, 1.53, 1.39, 1.74, 0.10, 2.10},
+      {1092, -1639, 155, {230, 41, 160}, {101, 194, 87}, {249, 172, 8}, {87, 165, 235}, {242, 78, 20},
+       {1.06, 1.00, 1.26}, 0.63, 0.74, 1.40, 2.42, 1.40, 2.14}};
+  for (const Venue& v : venues) {
+    const SceneScore s = venueScore(v);
+    EXPECT_EQ(s.ballRecall(), 1.0) << "venue " << v.seed;
+    EXPECT_EQ(s.ballPrecision(), 1.0) << "venue " << v.seed;
+  }
+  const SceneScore side = venueScore({1092, -1639, 155, {230, 41, 160}, {101, 194, 87}, {249, 172, 8}, {87, 165, 235},
+                                      {242, 78, 20}, {1.06, 1.00, 1.26}, 0.63, 0.74, 1.15, 1.85, 1.40, 2.14},
+                                     false);
+  EXPECT_EQ(side.truth_balls, 0);
+  EXPECT_EQ(side.balls_detected, 0);
+}
+
 }  // namespace
 }  // namespace dv

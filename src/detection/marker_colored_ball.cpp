@@ -18,6 +18,8 @@ constexpr double kRingMm = (RobotPatternGeometry::kCenterBlobRadius + RobotPatte
                             RobotPatternGeometry::kSideBlobRadius) /
                            2;
 constexpr int kRingSamples = 24;
+// Beyond a robot's top by a side dot's radius (its blurred rim).
+constexpr double kBeyondTopMm = RobotPatternGeometry::kTopRadius + RobotPatternGeometry::kSideBlobRadius;
 // The ball's color as ever more light clips it: its channels scaled by `t`
 // from where the brightest reaches the sensor's top, each capped there. A
 // camera clips before its gamma, and a gamma scales every unclipped channel
@@ -74,9 +76,10 @@ bool MarkerColoredBallTest::isRim(const float rgb[3]) const {
 namespace {
 // The ring's samples that lie in the image, into rgb (kRingSamples x 3);
 // their count.
-int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float* rgb) {
+int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float* rgb,
+                double ring_mm = kRingMm) {
   if (!frame.image || frame.image->empty()) return 0;
-  const double w = frame.image->cols, h = frame.image->rows, r = kRingMm / ball_radius_mm * radius_px;
+  const double w = frame.image->cols, h = frame.image->rows, r = ring_mm / ball_radius_mm * radius_px;
   int n = 0;
   for (int i = 0; i < kRingSamples; ++i) {
     const double a = 2 * kPi * i / kRingSamples;
@@ -86,21 +89,54 @@ int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double
   }
   return n;
 }
+
+// Per-channel median chromaticity of n ring samples.
+ColorVec medianColor(const float* ring, int n) {
+  float v[kRingSamples], median[3];
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < n; ++i) v[i] = ring[3 * i + k];
+    std::nth_element(v, v + n / 2, v + n);
+    median[k] = v[n / 2];
+  }
+  return colorFeature(median[0], median[1], median[2]);
+}
 }  // namespace
 
 double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness) {
   float ring[3 * kRingSamples];
+  // The carpet as it lies beyond the top of a robot this blob would be the
+  // center of, in the ball's own light (a sun patch's lit carpet): that
+  // ring's median color, where at least half the ring shows it within a
+  // color's noise. (Around a side dot of a robot not found, in a sun patch
+  // at gamma 0.74, the ring crossed its top and a neighbour's: its median
+  // lay near the tops', 7 of its 24 samples within the noise.)
+  ColorVec beyond;
+  const int n_beyond = ringSamples(frame, center, radius_px, ball_radius_mm, ring, kBeyondTopMm);
+  bool has_beyond = false;
+  if (2 * n_beyond >= kRingSamples) {
+    beyond = medianColor(ring, n_beyond);
+    int alike = 0;
+    for (int i = 0; i < n_beyond; ++i) alike += ClippedColor(ring + 3 * i).distance(beyond) <= kMinClassRadius;
+    has_beyond = alike >= kMinCarpetAroundBall * kRingSamples;
+  }
   const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
   int carpet = 0;
   for (int i = 0; i < n; ++i) {
     const float* rgb = ring + 3 * i;
+    const ClippedColor seen(rgb);
+    // As the carpet beyond, within a color's noise: carpet, however dark
+    // beside the ball (a red ball on a dark carpet) or near a class (a cold
+    // cast's lit carpet clips to the sky-blue centers' color).
+    if (has_beyond && seen.distance(beyond) <= kMinClassRadius) {
+      ++carpet;
+      continue;
+    }
     if (rgb[0] + rgb[1] + rgb[2] < kTopBrightness * brightness) continue;
     if (!colors) {
       ++carpet;
       continue;
     }
-    const ClippedColor seen(rgb);
     int nearest = kField;
     for (int k = 0; k < kNumClasses; ++k)
       if (k != kGreen && colors->seen[k] && seen.distance(colors->color[k]) < seen.distance(colors->color[nearest]))
@@ -114,13 +150,7 @@ bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, d
   float ring[3 * kRingSamples];
   const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
   if (2 * n < kRingSamples) return false;
-  float v[kRingSamples], median[3];
-  for (int k = 0; k < 3; ++k) {
-    for (int i = 0; i < n; ++i) v[i] = ring[3 * i + k];
-    std::nth_element(v, v + n / 2, v + n);
-    median[k] = v[n / 2];
-  }
-  color = colorFeature(median[0], median[1], median[2]);
+  color = medianColor(ring, n);
   return true;
 }
 
