@@ -61,7 +61,9 @@ TEST(MarkerColoredBall, ACenterDotOnARobotsTopStandsOnNoCarpet) {
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
   const FrameColors colors = paintedColors();
-  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
+  int may_be_top = 0;
+  EXPECT_EQ(carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness, &may_be_top), 0.0);
+  EXPECT_GT(may_be_top, 0);
   // Without the frame's classes only the top's darkness tells it.
   EXPECT_EQ(carpetAroundBall(frame, nullptr, kCenter, kRadiusPx, kBallRadiusMm, brightness), 0.0);
 }
@@ -114,9 +116,11 @@ TEST(MarkerColoredBall, ALineBesideTheBallLeavesMostOfItsRingOnCarpet) {
   const FrameView frame{&image, BayerPattern::None};
   const float brightness = kYellowDot[0] + kYellowDot[1] + kYellowDot[2];
   const FrameColors colors = paintedColors();
-  const double share = carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness);
+  int may_be_top = -1;
+  const double share = carpetAroundBall(frame, &colors, kCenter, kRadiusPx, kBallRadiusMm, brightness, &may_be_top);
   EXPECT_GT(share, 0.5);
   EXPECT_LT(share, 1.0);
+  EXPECT_EQ(may_be_top, 0);  // a line is no robot's top
 }
 
 TEST(MarkerColoredBall, TheMarkersClassAndTheBallsOwnColorsAreBoth) {

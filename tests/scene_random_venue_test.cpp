@@ -392,7 +392,7 @@ TEST(SceneRandomVenue, BallsClippedPaleInTheSunAreFoundAlone) {
 // a sun patch (1.60) under a warm cast kept a yellow-green dot clipped pale,
 // (231, 240, 124), nearest to the green class, on the ball's own clip path
 // mixed with the carpet, and half its ring on the robot's top. Nearest to
-// no marker, a ball must have carpet all round it.
+// no marker, a ball's ring may show no robot's top.
 TEST(SceneRandomVenue, APaleDotOfARobotNotFoundIsNoBall) {
   const SceneScore s = venueScore({444, -1542, 1776, {247, 109, 181}, {141, 207, 57}, {246, 197, 34}, {75, 142, 216},
                                    {248, 95, 20}, {1.32, 0.81, 0.94}, 0.84, 1.46, 1.25, 2.27, -0.36, 1.60},
@@ -535,6 +535,18 @@ TEST(SceneRandomVenue, TheCarpetBeyondARobotsReachTellsTheBallsRing) {
                                      false);
   EXPECT_EQ(side.truth_balls, 0);
   EXPECT_EQ(side.balls_detected, 0);
+}
+
+// Extreme #1006: a sun patch (2.29) at saturation 0.41 clips the ball to
+// (237, 238, 193), nearest to the lines' white, beside a robot whose lit
+// body, (108, 104, 73), took two of its 24 ring samples. A ball nearest to
+// no marker needed carpet all round; what the ring must not show is a
+// robot's top (too dark for carpet; APaleDotOfARobotNotFoundIsNoBall).
+TEST(SceneRandomVenue, APaleBallBesideARobotsBodyIsTheBall) {
+  const SceneScore s = venueScore({1006, -1021, -924, {242, 88, 174}, {58, 179, 119}, {243, 217, 55}, {79, 150, 223},
+                                   {254, 116, 20}, {1.29, 0.89, 0.98}, 0.41, 1.53, 0.99, 1.00, -1.82, 2.29});
+  EXPECT_EQ(s.ballRecall(), 1.0);
+  EXPECT_EQ(s.ballPrecision(), 1.0);
 }
 
 }  // namespace

@@ -546,11 +546,13 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     if (!colored || (round_needed ? !ballSilhouetteCenter(frame_view, test, px, r, whole)
                                   : ballColorBeyondRim(frame_view, test, px, r)))
       continue;
-    // Nearest to no marker, its color vouches least: the ring must be
-    // carpet all round. (A robot not found kept a yellow-green dot, clipped
-    // pale in a sun patch, whose ring was half its top.)
-    const double carpet = carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness());
-    if (carpet < (m.cls >= 0 ? kMinCarpetAroundBall : 1.0)) continue;
+    // Nearest to no marker, its color vouches least: no part of the ring
+    // may be a robot's top. (A robot not found kept a yellow-green dot,
+    // clipped pale in a sun patch, whose ring was half its top.)
+    int may_be_top = 0;
+    const double carpet =
+        carpetAroundBall(frame_view, &ring_colors, px, r, opt.ball_radius, b.brightness(), &may_be_top);
+    if (carpet < kMinCarpetAroundBall || (m.cls < 0 && may_be_top > 0)) continue;
     BallCandidate c;
     c.blob = m.blob;
     c.pos = b.at_ball;

@@ -103,7 +103,7 @@ ColorVec medianColor(const float* ring, int n) {
 }  // namespace
 
 double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
-                        double ball_radius_mm, float brightness) {
+                        double ball_radius_mm, float brightness, int* may_be_top) {
   float ring[3 * kRingSamples];
   // The carpet as it lies beyond the top of a robot this blob would be the
   // center of, in the ball's own light (a sun patch's lit carpet): that
@@ -121,7 +121,7 @@ double carpetAroundBall(const FrameView& frame, const FrameColors* colors, Image
     has_beyond = alike >= kMinCarpetAroundBall * kRingSamples;
   }
   const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
-  int carpet = 0;
+  int carpet = 0, dark = 0;
   for (int i = 0; i < n; ++i) {
     const float* rgb = ring + 3 * i;
     const ClippedColor seen(rgb);
@@ -132,7 +132,10 @@ double carpetAroundBall(const FrameView& frame, const FrameColors* colors, Image
       ++carpet;
       continue;
     }
-    if (rgb[0] + rgb[1] + rgb[2] < kTopBrightness * brightness) continue;
+    if (rgb[0] + rgb[1] + rgb[2] < kTopBrightness * brightness) {
+      ++dark;
+      continue;
+    }
     if (!colors) {
       ++carpet;
       continue;
@@ -143,6 +146,7 @@ double carpetAroundBall(const FrameView& frame, const FrameColors* colors, Image
         nearest = k;
     carpet += nearest == kField;
   }
+  if (may_be_top) *may_be_top = dark + kRingSamples - n;
   return static_cast<double>(carpet) / kRingSamples;
 }
 

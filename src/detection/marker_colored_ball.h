@@ -66,9 +66,11 @@ class MarkerColoredBallTest final : public BallColorTest {
 // frame's classes cannot tell the carpet: under a cold cast in H.264 the
 // carpet beside a washed-out ball lay nearer to the pale yellow centers
 // than to the field class).
+// may_be_top: how many samples may show a robot's top (too dark for carpet
+// and unlike the carpet beyond, or beyond the image).
 inline constexpr double kMinCarpetAroundBall = 0.5;
 double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
-                        double ball_radius_mm, float brightness);
+                        double ball_radius_mm, float brightness, int* may_be_top = nullptr);
 // What lies around a ball on the same ring: the chromaticity of its
 // per-channel median. Around a ball alone that is the carpet (a fast
 // ball's streak covers less than half the ring). False where less than
