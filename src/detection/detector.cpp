@@ -1,5 +1,6 @@
 #include "detection/detector_impl.h"
 
+#include "detection/marker_colored_ball.h"
 #include "detection/seen_color.h"
 #include "geometry/robot_pattern.h"
 
@@ -87,7 +88,14 @@ void Detector::Impl::readUnclipped(const Blob& b, double z0, FrameBlob& f) const
   if (!px) return;
   // Within the smallest of the dots and the ball.
   const double radius = std::min(RobotPatternGeometry::kSideBlobRadius, opt.ball_radius);
-  const SeenColor rim = unclippedDiscColor(frame_view, *px, ballRadiusPx(camera, {b.position.x, b.position.y, z0}, radius));
+  const FieldPoint at{b.position.x, b.position.y, z0};
+  SeenColor rim = unclippedDiscColor(frame_view, *px, ballRadiusPx(camera, at, radius));
+  // Clipped in two channels all over that disc, a ball in a sun patch has
+  // its unclipped rim in its blurred edge: read out to midway between its
+  // radius and the ring that must show carpet (a three-channel clip is a
+  // center's, read by its rim against the robot's top: readByRim).
+  if (!(rim.share > 0) && !ClippedColor(b.rgb).white())
+    rim = unclippedDiscColor(frame_view, *px, ballRadiusPx(camera, at, (opt.ball_radius + kCarpetRingMm) / 2));
   if (!(rim.share > 0) || ClippedColor(rim.rgb).saturated()) return;
   f.has_unclipped = true;
   std::copy(rim.rgb, rim.rgb + 3, f.unclipped_rgb);

@@ -13,10 +13,6 @@ namespace dv {
 using namespace color_class;
 
 namespace {
-// Midway between a center dot's rim and its side dots' inner rims (mm).
-constexpr double kRingMm = (RobotPatternGeometry::kCenterBlobRadius + RobotPatternGeometry::kSideBlobDistance -
-                            RobotPatternGeometry::kSideBlobRadius) /
-                           2;
 constexpr int kRingSamples = 24;
 // Beyond a robot's top by a side dot's radius (its blurred rim).
 constexpr double kBeyondTopMm = RobotPatternGeometry::kTopRadius + RobotPatternGeometry::kSideBlobRadius;
@@ -77,7 +73,7 @@ namespace {
 // The ring's samples that lie in the image, into rgb (kRingSamples x 3);
 // their count.
 int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float* rgb,
-                double ring_mm = kRingMm) {
+                double ring_mm = kCarpetRingMm) {
   if (!frame.image || frame.image->empty()) return 0;
   const double w = frame.image->cols, h = frame.image->rows, r = ring_mm / ball_radius_mm * radius_px;
   int n = 0;

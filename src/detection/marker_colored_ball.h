@@ -14,8 +14,17 @@
 // must lie on the ball's own clip path mixed with the carpet around it.
 #include "detection/ball_color.h"
 #include "detection/seen_color.h"
+#include "geometry/robot_pattern.h"
 
 namespace dv {
+
+// Where the ring around a ball that must show carpet lies (mm from its
+// center): midway between a center dot's rim and its side dots' inner
+// rims, where a robot's top would show (carpetAroundBall).
+inline constexpr double kCarpetRingMm = (RobotPatternGeometry::kCenterBlobRadius +
+                                         RobotPatternGeometry::kSideBlobDistance -
+                                         RobotPatternGeometry::kSideBlobRadius) /
+                                        2;
 
 // Ball-colored: as the frame's judge says, or within the reach of one
 // marker class of this frame (`marker_class`; -1: none, only the ball's own
