@@ -67,7 +67,10 @@ class MarkerColoredBallTest final : public BallColorTest {
 // sun patch lights the carpet around such a ball, and under gamma more
 // light moves its chromaticity toward green's, 15 apart under tungsten;
 // green dots lie beyond the ring) and it is no darker than a robot's top
-// may be beside its markers (kTopBrightness). Samples beyond the image
+// may be beside its markers (kTopBrightness); or, whatever its class and
+// darkness, where it lies within a color's noise of the carpet beyond a
+// robot's reach around the ball (a ring 105 mm out, its median color,
+// where at least half of that ring shows it). Samples beyond the image
 // count as no carpet.
 // A ball judged by where it lies stands mostly on the carpet: at least half
 // of that ring (a ball beside a robot still shows half of it).
