@@ -129,20 +129,30 @@ TEST_F(ImageHeaderSourceTest, HugeClaimedSizeIsSkippedWithTheSize) {
 }
 
 
-// Found by fuzz_image_decode: "P6 01281%637200 5700": OpenCV's PNM reader
-// stepped over the '%' and allocated 1281 x 637200 pixels of 16 bits
-// (4.9 GB), a size the header check could not read. A PNM header that is
-// not decimal numbers is refused; the frame after it still comes.
-TEST_F(ImageHeaderSourceTest, DamagedPnmHeaderIsRefusedBeforeTheDecoder) {
-  const std::string damaged = "P6 01281%637200 5700\x83" "012890";
-  write("a_0.pgm", std::vector<unsigned char>(damaged.begin(), damaged.end()));
-  write("a_1.png", encoded(".png", 8, 8, 3));
+// Found by fuzz_image_decode: "P6 01281%637200 5700" and "P6 012882#63700
+// 02057": OpenCV's PNM reader takes the character that ends a number,
+// whatever it is, so it read 1281 x 637200 and 12882 x 63700 pixels of 16
+// bits (4.9 GB each) where a reading by the format's rules saw no size or
+// 12882 x 6. The header is read as the decoder reads it and refused for its
+// size; a header that is not decimal numbers is refused as damaged; the
+// frame after each still comes.
+TEST_F(ImageHeaderSourceTest, PnmHeaderIsReadAsTheDecoderReadsIt) {
+  const std::string percent = "P6 01281%637200 5700\x83" "012890";
+  const std::string hash = "P6 012882#63700 02057\x83!01oooooooooooooooooo\n6\n20";
+  const std::string damaged = "P6 01281 %637200 5700\n";
+  write("a_0.pgm", std::vector<unsigned char>(percent.begin(), percent.end()));
+  write("a_1.pgm", std::vector<unsigned char>(hash.begin(), hash.end()));
+  write("a_2.ppm", std::vector<unsigned char>(damaged.begin(), damaged.end()));
+  write("a_3.png", encoded(".png", 8, 8, 3));
   std::unique_ptr<FrameSource> src;
   const std::vector<uint32_t> delivered = readAll(src);
-  EXPECT_EQ(delivered, std::vector<uint32_t>{1});
-  ASSERT_EQ(src->skipped().size(), 1u);
-  EXPECT_NE(src->skipped()[0].reason.find("damaged PNM header"), std::string::npos) << src->skipped()[0].reason;
-  EXPECT_NE(src->skipped()[0].name.find("a_0.pgm"), std::string::npos) << src->skipped()[0].name;
+  EXPECT_EQ(delivered, std::vector<uint32_t>{3});
+  ASSERT_EQ(src->skipped().size(), 3u);
+  const char* expected[] = {"claims 1281x637200 pixels", "claims 12882x63700 pixels", "damaged PNM header"};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NE(src->skipped()[i].reason.find(expected[i]), std::string::npos) << src->skipped()[i].reason;
+    EXPECT_NE(src->skipped()[i].name.find("a_" + std::to_string(i)), std::string::npos) << src->skipped()[i].name;
+  }
 }
 
 

@@ -216,8 +216,8 @@ bool ImageSequenceSource::next(Frame& f) {
       continue;
     }
     const auto claimed = claimedImageSize(file_bytes_.data(), size);
-    // OpenCV's PNM reader steps over stray characters in the header and
-    // would read a size this check never saw (and allocate it).
+    // A PNM size this check cannot read never reaches the decoder, which
+    // would allocate whatever it reads.
     if (!claimed && std::strcmp(format, "PNM") == 0) {
       recordSkip(path, "damaged PNM header: the width and height are not decimal numbers");
       continue;

@@ -17,7 +17,9 @@ int32_t littleEndian32(const unsigned char* p) {
 }
 
 // PNM: "P1".."P6", then width and height as decimal text separated by
-// whitespace and '#' comments.
+// whitespace and '#' comments, read as OpenCV's decoder reads them: the
+// character that ends a number is consumed whatever it is, so in "12#34"
+// the '#' starts no comment and 34 is the next number.
 std::optional<ImageSize> pnmSize(const unsigned char* b, size_t size) {
   size_t at = 2;
   int64_t values[2] = {0, 0};
@@ -35,6 +37,7 @@ std::optional<ImageSize> pnmSize(const unsigned char* b, size_t size) {
       value = value * 10 + (b[at++] - '0');
       if (value > (int64_t(1) << 40)) return ImageSize{value, 1};  // absurd already
     }
+    ++at;  // the number's end, taken by the decoder
   }
   return ImageSize{values[0], values[1]};
 }
