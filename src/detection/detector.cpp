@@ -83,7 +83,8 @@ void Detector::Impl::prepare(const BlobList& list) {
 }
 
 void Detector::Impl::readUnclipped(const Blob& b, double z0, FrameBlob& f) const {
-  if (!ClippedColor(b.rgb).saturated()) return;
+  const ClippedColor clipped(b.rgb);
+  if (!clipped.saturated()) return;
   const auto px = camera.fieldToImage({b.position.x, b.position.y, z0});
   if (!px) return;
   // Within the smallest of the dots and the ball.
@@ -94,7 +95,7 @@ void Detector::Impl::readUnclipped(const Blob& b, double z0, FrameBlob& f) const
   // its unclipped rim in its blurred edge: read out to midway between its
   // radius and the ring that must show carpet (a three-channel clip is a
   // center's, read by its rim against the robot's top: readByRim).
-  if (!(rim.share > 0) && !ClippedColor(b.rgb).white())
+  if (!(rim.share > 0) && !clipped.white())
     rim = unclippedDiscColor(frame_view, *px, ballRadiusPx(camera, at, (opt.ball_radius + kCarpetRingMm) / 2));
   if (!(rim.share > 0) || ClippedColor(rim.rgb).saturated()) return;
   f.has_unclipped = true;
