@@ -7,6 +7,7 @@
 #include "geometry/calibration/calibrate_camera.h"
 #include "geometry/calibration/line_groups.h"
 #include "geometry/calibration/line_pixels.h"
+#include "io/image_decode.h"
 
 namespace dv {
 namespace {
@@ -80,7 +81,7 @@ TEST(CalibrationInput, FieldWithoutLinesIsRejected) {
 TEST(CalibrationInput, CorruptImageFormatsAreInputErrors) {
   EXPECT_THROW(toBgrImage(cv::Mat(), "x.png"), InputError);
   EXPECT_THROW(toBgrImage(cv::Mat(10, 10, CV_16UC1, cv::Scalar(0)), "x.png"), InputError);
-  EXPECT_THROW(loadCalibrationImage("/nonexistent/dir/image.pgm"), InputError);
+  EXPECT_THROW(readImageFile("/nonexistent/dir/image.pgm"), InputError);
 }
 
 // Wrong corner clicks (a mirrored order) must not produce a calibration.

@@ -9,8 +9,10 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/error.h"
 #include "frame_count.h"
 #include "io/frame_source.h"
+#include "io/image_decode.h"
 #include "io/image_header.h"
 
 namespace dv {
@@ -155,6 +157,74 @@ TEST_F(ImageHeaderSourceTest, PnmHeaderIsReadAsTheDecoderReadsIt) {
   }
 }
 
+
+// Each format's size is read as OpenCV's decoder reads it, so that no file
+// reaches a decoder with a size other than the one checked.
+TEST(ImageHeader, ReadsTheSizeTheDecoderReads) {
+  // libjpeg steps over bytes before a marker: a frame header after three
+  // stray bytes (once a 56 s fill of 900 Mpx under the fuzzer) still counts.
+  auto jpg = encoded(".jpg", 8, 8, 3);
+  size_t sof = 0;
+  for (size_t i = 2; i + 9 < jpg.size() && !sof; ++i)
+    if (jpg[i] == 0xff && jpg[i + 1] == 0xc0) sof = i;
+  ASSERT_GT(sof, 0u);
+  jpg[sof + 5] = jpg[sof + 7] = 30000 >> 8;
+  jpg[sof + 6] = jpg[sof + 8] = 30000 & 0xff;
+  jpg.insert(jpg.begin() + long(sof), {0x00, 0x12, 0x34});
+  auto size = claimedImageSize(jpg.data(), jpg.size());
+  ASSERT_TRUE(size.has_value());
+  EXPECT_EQ(size->width, 30000);
+  EXPECT_EQ(size->height, 30000);
+
+  // An OS/2 bitmap's 12-byte header holds 16-bit sizes (read as 32-bit
+  // ones, 640 x 480 was 31 million pixels wide).
+  std::vector<unsigned char> bmp(64, 0);
+  bmp[0] = 'B', bmp[1] = 'M', bmp[14] = 12;
+  bmp[18] = 640 & 0xff, bmp[19] = 640 >> 8, bmp[20] = 480 & 0xff, bmp[21] = 480 >> 8;
+  bmp[22] = 1, bmp[24] = 24;
+  size = claimedImageSize(bmp.data(), bmp.size());
+  ASSERT_TRUE(size.has_value());
+  EXPECT_EQ(size->width, 640);
+  EXPECT_EQ(size->height, 480);
+
+  // TIFF: libtiff takes any integer type for the sizes. A signed LONG width
+  // is read; one of a type not read (RATIONAL, 5) leaves the size unread.
+  auto tif = encoded(".tif", 8, 8, 3);
+  ASSERT_EQ(tif[0], 'I');
+  const size_t ifd = tif[4] | tif[5] << 8 | tif[6] << 16 | size_t(tif[7]) << 24;
+  unsigned char* width_entry = nullptr;
+  for (size_t i = 0, n = tif[ifd] | tif[ifd + 1] << 8; i < n; ++i) {
+    unsigned char* e = tif.data() + ifd + 2 + 12 * i;
+    if ((e[0] | e[1] << 8) == 256) width_entry = e;
+  }
+  ASSERT_NE(width_entry, nullptr);
+  width_entry[2] = 9, width_entry[3] = 0;  // SLONG
+  width_entry[8] = 40000 & 0xff, width_entry[9] = 40000 >> 8, width_entry[10] = width_entry[11] = 0;
+  size = claimedImageSize(tif.data(), tif.size());
+  ASSERT_TRUE(size.has_value());
+  EXPECT_EQ(size->width, 40000);
+  width_entry[2] = 5;
+  EXPECT_FALSE(claimedImageSize(tif.data(), tif.size()).has_value());
+}
+
+// A calibration image goes the same checked way as a frame: a header
+// claiming too many pixels is named with the file, never decoded.
+TEST_F(ImageHeaderSourceTest, CalibrationImageIsCheckedLikeAFrame) {
+  const std::string pgm = "P5\n40000 40000\n255\n" + std::string(64, 'x');
+  write("field.pgm", std::vector<unsigned char>(pgm.begin(), pgm.end()));
+  const std::string path = (dir_ / "field.pgm").string();
+  try {
+    readImageFile(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("claims 40000x40000"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("field.pgm"), std::string::npos) << e.what();
+  }
+  write("good.png", encoded(".png", 8, 6, 3));
+  const cv::Mat good = readImageFile((dir_ / "good.png").string());
+  EXPECT_EQ(good.cols, 8);
+  EXPECT_EQ(good.rows, 6);
+}
 
 // Found by fuzz_image_decode: a file with the DICOM marker at byte 128 made
 // OpenCV hand it to its DICOM reader, which aborted the whole process on

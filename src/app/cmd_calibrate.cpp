@@ -22,6 +22,7 @@
 #include "geometry/calibration/calibration_report.h"
 #include "geometry/calibration/line_pixels.h"
 #include "geometry/geometry_io.h"
+#include "io/image_decode.h"
 
 namespace dv::app {
 
@@ -111,7 +112,7 @@ CommandFn addCalibrateCommand(CLI::App& root) {
     geometry.cameras.clear();
     if (geometry.field.lines.empty())
       throw InputError(opt->geometry, "the field has no lines to calibrate on");
-    const cv::Mat image = loadCalibrationImage(opt->image);
+    const cv::Mat image = calibrationImage(readImageFile(opt->image), opt->image);
 
     CalibrationRequest req;
     req.camera_id = uint32_t(opt->camera_id);

@@ -2,21 +2,17 @@
 #include "io/frame_times.h"
 
 #include <glob.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
-#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "core/error.h"
-#include "io/image_header.h"
+#include "io/image_decode.h"
 
 namespace dv {
 
@@ -30,76 +26,6 @@ std::string lowerExtension(const std::string& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
-
-bool endsWith(const std::vector<unsigned char>& bytes, size_t size, const unsigned char* tail,
-              size_t n) {
-  return size >= n && std::equal(tail, tail + n, bytes.begin() + static_cast<long>(size - n));
-}
-
-// The first chunk whose CRC does not match, as a skip reason ("" if none).
-// libpng would print its own "libpng error" line for such a file before
-// failing, and for a damaged ancillary chunk decode it with a warning.
-std::string pngChunkDamage(const unsigned char* bytes, size_t size) {
-  size_t at = 8;
-  while (at + 12 <= size) {
-    const uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
-                            uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
-    if (length > size - at - 12) return "damaged PNG (chunk at byte " + std::to_string(at) + " runs past the end)";
-    const unsigned char* type = bytes + at + 4;
-    const unsigned char* crc = type + 4 + length;
-    const uint32_t stored = uint32_t(crc[0]) << 24 | uint32_t(crc[1]) << 16 | uint32_t(crc[2]) << 8 | uint32_t(crc[3]);
-    if (uint32_t(::crc32(0, type, 4 + length)) != stored) {
-      return "damaged PNG (" + std::string(reinterpret_cast<const char*>(type), 4) + " chunk at byte " +
-             std::to_string(at) + " fails its CRC)";
-    }
-    if (std::equal(type, type + 4, "IEND")) return "";
-    at += 12 + length;
-  }
-  return "damaged PNG (no IEND chunk)";
-}
-
-// Decoders fill a truncated JPEG with gray and warn on stderr, and some PNG
-// paths do similar; checking the end markers catches the cut before decoding.
-// Returns an empty string when the bytes look complete.
-std::string truncationReason(const std::vector<unsigned char>& bytes, size_t size) {
-  static const unsigned char kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  static const unsigned char kPngEnd[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
-  if (size >= 8 && std::equal(kPngMagic, kPngMagic + 8, bytes.begin())) {
-    if (!endsWith(bytes, size, kPngEnd, 8)) return "truncated PNG (no IEND chunk at the end)";
-    return pngChunkDamage(bytes.data(), size);
-  }
-  if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) {
-    // Allow trailing padding after EOI, as some cameras write it.
-    for (size_t i = size; i >= 2 && i + 64 >= size; --i)
-      if (bytes[i - 2] == 0xff && bytes[i - 1] == 0xd9) return "";
-    return "truncated JPEG (no end-of-image marker)";
-  }
-  return "";
-}
-
-// OpenCV's imdecode writes a damaged header's error to std::cerr itself
-// ("imdecode_(''): can't read header: ...") before returning an empty image,
-// which is then skipped with the project's reason. std::cerr is muted while
-// any thread decodes (counted: two cameras decoding at once restore it
-// once); the project writes to stderr through stdio and spdlog only.
-class MutedStdCerr {
- public:
-  MutedStdCerr() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (count_++ == 0) saved_ = std::cerr.rdbuf(nullptr);
-  }
-  ~MutedStdCerr() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (--count_ == 0) std::cerr.rdbuf(saved_);  // rdbuf() also clears the stream's state
-  }
-  MutedStdCerr(const MutedStdCerr&) = delete;
-  MutedStdCerr& operator=(const MutedStdCerr&) = delete;
-
- private:
-  static inline std::mutex mutex_;
-  static inline int count_ = 0;
-  static inline std::streambuf* saved_ = nullptr;
-};
 
 bool readFileInto(const std::string& path, std::vector<unsigned char>& buffer, size_t& size) {
   std::ifstream in(path, std::ios::binary);
@@ -202,49 +128,11 @@ bool ImageSequenceSource::next(Frame& f) {
       }
       continue;
     }
-    if (size == 0) {
-      recordSkip(path, "empty file");
-      continue;
-    }
-    if (std::string why = truncationReason(file_bytes_, size); !why.empty()) {
-      recordSkip(path, why);
-      continue;
-    }
-    const char* format = acceptedImageFormat(file_bytes_.data(), size);
-    if (!format) {
-      recordSkip(path, "not a PNG, JPEG, PNM, BMP or TIFF image (by its first bytes)");
-      continue;
-    }
-    const auto claimed = claimedImageSize(file_bytes_.data(), size);
-    // A PNM size this check cannot read never reaches the decoder, which
-    // would allocate whatever it reads.
-    if (!claimed && std::strcmp(format, "PNM") == 0) {
-      recordSkip(path, "damaged PNM header: the width and height are not decimal numbers");
-      continue;
-    }
-    if (claimed && tooManyPixels(*claimed)) {
-      recordSkip(path, "the header claims " + std::to_string(claimed->width) + "x" +
-                           std::to_string(claimed->height) + " pixels, above the limit of " +
-                           std::to_string(kMaxImagePixels >> 20) + " Mpx");
-      continue;
-    }
-    const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, file_bytes_.data());
     // A fresh Mat: on failure OpenCV leaves a passed-in target untouched,
     // which would hand out the previous image as this one.
     cv::Mat decoded;
-    try {
-      const MutedStdCerr quiet;
-      decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-      recordSkip(path, std::string("cannot decode the image: ") + e.what());
-      continue;
-    }
-    if (decoded.empty()) {
-      recordSkip(path, "not a readable image (corrupt or unsupported format)");
-      continue;
-    }
-    if (decoded.depth() != CV_8U) {
-      recordSkip(path, "unsupported pixel depth (only 8-bit images are accepted)");
+    if (std::string why = decodeImageBytes(file_bytes_.data(), size, decoded); !why.empty()) {
+      recordSkip(path, why);
       continue;
     }
     switch (decoded.channels()) {

@@ -1,5 +1,6 @@
 #include "io/image_header.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 
@@ -43,14 +44,19 @@ std::optional<ImageSize> pnmSize(const unsigned char* b, size_t size) {
 }
 
 // JPEG: the first start-of-frame marker (C0..CF but C4, C8, CC) holds
-// height and width; other segments are skipped by their length.
+// height and width; other segments are skipped by their length. As libjpeg
+// does, bytes before a marker are stepped over ("extraneous bytes"), and so
+// are 0xFF fill bytes and stuffed FF 00 pairs.
 std::optional<ImageSize> jpegSize(const unsigned char* b, size_t size) {
   size_t at = 2;
   while (at + 4 <= size) {
-    if (b[at] != 0xff) return std::nullopt;
     const unsigned char marker = b[at + 1];
-    if (marker == 0xff) {  // fill byte
+    if (b[at] != 0xff || marker == 0xff) {  // stray or fill byte
       ++at;
+      continue;
+    }
+    if (marker == 0x00) {
+      at += 2;
       continue;
     }
     if (marker == 0xd8 || marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) {
@@ -69,7 +75,10 @@ std::optional<ImageSize> jpegSize(const unsigned char* b, size_t size) {
 }
 
 // TIFF: the first image file directory's ImageWidth (256) and ImageLength
-// (257) entries, SHORT or LONG, in the byte order the header names.
+// (257) entries in the byte order the header names. libtiff takes any
+// integer type there; those of up to four bytes are read (signed ones as
+// their magnitude), and the largest of repeated entries; an entry of
+// another type leaves the size unread.
 std::optional<ImageSize> tiffSize(const unsigned char* b, size_t size) {
   const bool little = b[0] == 'I';
   auto read = [&](size_t at, int n) -> uint32_t {
@@ -84,8 +93,14 @@ std::optional<ImageSize> tiffSize(const unsigned char* b, size_t size) {
   for (size_t i = 0; i < entries && ifd + 2 + 12 * (i + 1) <= size; ++i) {
     const size_t e = ifd + 2 + 12 * i;
     const uint32_t tag = read(e, 2), type = read(e + 2, 2);
-    if ((tag != 256 && tag != 257) || (type != 3 && type != 4)) continue;
-    (tag == 256 ? width : height) = type == 3 ? read(e + 8, 2) : read(e + 8, 4);
+    if (tag != 256 && tag != 257) continue;
+    // BYTE, SHORT, LONG, then SBYTE, SSHORT, SLONG: 1, 3, 4, 6, 8, 9.
+    const int bytes = type == 1 || type == 6 ? 1 : type == 3 || type == 8 ? 2 : type == 4 || type == 9 ? 4 : 0;
+    if (bytes == 0) return std::nullopt;
+    int64_t value = read(e + 8, bytes);
+    if (type >= 6 && value >> (8 * bytes - 1)) value = (int64_t(1) << (8 * bytes)) - value;
+    int64_t& side = tag == 256 ? width : height;
+    side = std::max(side, value);
   }
   if (width < 0 || height < 0) return std::nullopt;
   return ImageSize{width, height};
@@ -112,7 +127,9 @@ std::optional<ImageSize> claimedImageSize(const unsigned char* b, size_t size) {
   if (size >= 4 && b[0] == 0xff && b[1] == 0xd8) return jpegSize(b, size);
   if (size >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '6') return pnmSize(b, size);
   if (size >= 26 && b[0] == 'B' && b[1] == 'M') {
-    // A negative height is a top-down bitmap.
+    // An OS/2 bitmap's 12-byte header holds 16-bit sizes; the others 32-bit
+    // ones, a negative height for a top-down bitmap.
+    if (littleEndian32(b + 14) == 12) return ImageSize{b[18] | b[19] << 8, b[20] | b[21] << 8};
     const int64_t w = littleEndian32(b + 18), h = littleEndian32(b + 22);
     return ImageSize{w < 0 ? -w : w, h < 0 ? -h : h};
   }

@@ -28,9 +28,10 @@ inline bool tooManyPixels(const ImageSize& s) {
 // content, and its DICOM reader aborts the process on a damaged file).
 const char* acceptedImageFormat(const unsigned char* bytes, size_t size);
 
-// The size in a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF header; nullopt when the
-// format is another or the header is too damaged to name one (the frame
-// sources then refuse a PNM, and leave the others to the decoder).
+// The size in a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF header, read as OpenCV's
+// decoders read it; nullopt when the format is another or the header is too
+// damaged to name one (the image is then refused: a size never checked must
+// not reach a decoder).
 std::optional<ImageSize> claimedImageSize(const unsigned char* bytes, size_t size);
 
 }  // namespace dv

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -27,15 +26,9 @@ cv::Mat toBgrImage(const cv::Mat& image, const std::string& source) {
   return bgr;
 }
 
-cv::Mat loadCalibrationImage(const std::string& path) {
-  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (raw.empty()) throw InputError(path, "cannot read an image from this file");
-  if (raw.depth() != CV_8U) throw InputError(path, "expected an 8-bit image");
-  if (raw.channels() == 1) {
-    toBgrImage(raw, path);  // validates the size
-    return raw;
-  }
-  return toBgrImage(raw, path);
+cv::Mat calibrationImage(const cv::Mat& decoded, const std::string& source) {
+  const cv::Mat bgr = toBgrImage(decoded, source);  // validates a mosaic's size too
+  return decoded.channels() == 1 ? decoded : bgr;
 }
 
 cv::Mat lineBrightness(const cv::Mat& image) {

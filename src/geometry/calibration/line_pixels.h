@@ -26,10 +26,9 @@ struct LinePixelOptions {
 // 8-bit single channel is a Bayer RGGB mosaic (as a `run` source); 3 channel
 // is BGR. Returns BGR. Throws InputError(source, ...) for other formats.
 cv::Mat toBgrImage(const cv::Mat& image, const std::string& source);
-// Reads an image file like a `run` source (Bayer mosaic kept as it is, colour
-// as BGR); throws InputError(path, ...) when it cannot be read, is empty or
-// has an unsupported format.
-cv::Mat loadCalibrationImage(const std::string& path);
+// A decoded image file as `run` takes it (Bayer mosaic kept as it is, colour
+// as BGR); throws InputError(source, ...) for an unsupported format.
+cv::Mat calibrationImage(const cv::Mat& decoded, const std::string& source);
 // Brightness for line detection. A Bayer mosaic is filtered with the 3x3
 // binomial kernel, which weighs R, G, B as 1:2:1 at every pixel, so thin
 // lines keep their shape instead of the colour fringes of demosaicing.
