@@ -29,11 +29,18 @@ bool pinkSideOfWhite(const ColorVec& dot, const ColorVec& white, const ColorVec&
 
 // The side slots of `r` that neither a blob nor a weak peak filled: the
 // color the camera saw there (seen_color.h), when clearly nearer to the
-// robot's own `green` or `pink`, sets the slot's marker.
+// robot's own `green` or `pink`, sets the slot's marker. A dot read clipped
+// in two channels or more only guesses it: its hue is gone, and at a sun
+// patch's soft edge a green dot lit half as much again as its neighbours
+// clips toward white like a pink (a blue 6 read as 11 and dropped beside
+// the real 11; pinks clipped to (255, 253, 255) beside greens read
+// (166, 255, 205), ids 12 and 13 read as 8). Left unseen, the slot is
+// settled by the ids fully seen teammates hold (partial_ids.h).
 void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& green, const ColorVec& pink,
                        std::array<MarkerColor, 4>& colors) {
   const std::vector<FrameBlob>& blobs = *c.blobs;
   if (!c.opt->probe_missing_sides || !c.frame.image) return;
+  const bool lone = __builtin_popcount(r.seen_sides) == 3;
   Hypothesis at_team = r;
   refitAtTeamHeight(at_team, blobs, c.opt->score_scale);
   const double z = r.team == Team::Yellow ? c.opt->robot_height_yellow : c.opt->robot_height_blue;
@@ -71,8 +78,10 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
       else if (c.white && !clipped[s] && __builtin_popcount(r.seen_sides) == 3)
         agrees = pinkSideOfWhite(dot[s], *c.white, green, pink) == (lab[s] == 1);
     if (agrees) {
-      for (int s = 0; s < 4; ++s) colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
-      r.seen_sides = 0xF;
+      for (int s = 0; s < 4; ++s) {
+        colors[s] = lab[s] == 0 ? MarkerColor::Green : MarkerColor::Pink;
+        if (!(clipped[s] && lone)) r.seen_sides |= static_cast<uint8_t>(1u << s);
+      }
       return;
     }
   }
@@ -80,7 +89,7 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     if (!read[s] || (r.seen_sides >> s & 1)) continue;
     const int label =
         sideColorOfDot(dot[s], dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
-    if (label < 0) continue;
+    if (label < 0 || (clipped[s] && lone)) continue;
     r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
 }
