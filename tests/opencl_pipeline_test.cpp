@@ -114,6 +114,8 @@ void expectSameBlobs(const BlobList& cpu, const BlobList& ocl, const std::string
   const int a = expectCounterparts(cpu.weak, ocl.weak, opt.weak_threshold, opt.threshold, what + " (weak)");
   const int b = expectCounterparts(ocl.weak, cpu.weak, opt.weak_threshold, opt.threshold, what + " (weak)");
   EXPECT_EQ(a, b) << what;
+  ASSERT_EQ(cpu.pale.size(), ocl.pale.size()) << what << " (pale)";
+  expectCounterparts(ocl.pale, cpu.pale, 0, 1e9, what + " (pale)");
 }
 
 // The CPU reference the OpenCL backend matches: the full grid everywhere
@@ -547,6 +549,41 @@ TEST(OpenClScenes, FastBallStreakMatchesTheCpuReference) {
   ASSERT_EQ(ra.balls.size(), 1u);
   const auto& truth = frame.truth.balls(0);
   EXPECT_LT(std::hypot(ra.balls[0].position.x - truth.x(), ra.balls[0].position.y - truth.y()), 5.0);
+}
+
+// A ball clipped pale in a sun patch under tungsten (2.3 times the light):
+// its peak fails the color gate and is kept apart (BlobList::pale) by both
+// backends and by the CPU's coarse search alike, and the detector finds it
+// from either list.
+TEST(OpenClScenes, APaleBallPeakIsKeptApartByEverySearch) {
+  DV_REQUIRE_OPENCL();
+  SceneSpec spec = presetScene("top_down_div_b_half");
+  spec.lighting.white_balance = {1.6, 1.0, 0.6};
+  spec.lighting.saturation = 0.8;
+  spec.materials.yellow = {250, 165, 0};
+  spec.materials.ball = {255, 150, 40};
+  spec.lighting.sun_patches = {{{-1500, 700}, 700, 600, 0.0, 2.3, 0.2}};
+  spec.ball.present = true;
+  spec.ball.position = {-1500, 600, 21.5};
+  Renderer renderer(spec);
+  const RenderedFrame frame = renderer.render(0, 0);
+  const CameraModel cam(spec.cameras[0].calib);
+  PipelineOptions opt;
+  const BothBackends run(cam, spec.field, opt, frame.image);
+  ASSERT_TRUE(run.ok()) << run.error();
+  expectSameBlobs(run.a, run.b, "pale ball");
+  CpuPipeline coarse(cam, spec.field, opt);
+  BlobList c;
+  ASSERT_TRUE(coarse.process(frame.image, c)) << coarse.lastError();
+  // On the rectification plane the ball lies about 25 mm out along its ray.
+  for (const BlobList* list : {&run.a, &run.b, static_cast<const BlobList*>(&c)}) {
+    int near = 0;
+    for (const Blob& p : list->pale) near += std::hypot(p.position.x + 1500, p.position.y - 600) < 60;
+    EXPECT_EQ(near, 1);
+  }
+  const Detections ra = expectSameDetections(cam, spec.field, run.a, run.b, FrameView{&frame.image, opt.bayer});
+  ASSERT_EQ(ra.balls.size(), 1u);
+  EXPECT_LT(std::hypot(ra.balls[0].position.x + 1500, ra.balls[0].position.y - 600), 3.0);
 }
 
 TEST(OpenClErrors, BadFramesAreRejectedWithTheCpuReferenceMessage) {

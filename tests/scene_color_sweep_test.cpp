@@ -141,6 +141,15 @@ void greenCastLemonLightOrangeBall(SceneSpec& s, int) {
   s.lighting.uneven_ratio = 3.0;
 }
 
+// A brighter sun patch (2.3) over a lighter ball under tungsten, with
+// amber centers: the ball clips in two channels to (255, 254, 143).
+void tungstenBrightSunAmberLightBall(SceneSpec& s, int) {
+  cast(s, kTungsten, 0.8);
+  s.materials.yellow = {250, 165, 0};
+  s.materials.ball = {255, 150, 40};
+  s.lighting.sun_patches = {{{-1500, 700}, 700, 600, 0.0, 2.3, 0.2}};
+}
+
 const std::vector<Condition>& conditions() {
   static const std::vector<Condition> list = {
       // --- casts: the white balance on its warm-cold and green-magenta axes
@@ -524,6 +533,13 @@ const std::vector<Condition>& conditions() {
          s.materials.blue = {47, 91, 173};
          s.materials.ball = {253, 113, 20};
        }},
+      // The ball clipped pale: after the lines' white balance as little
+      // saturated as a line crossing, so the pixel stage's color gate
+      // dropped it (ball 0.000 at 2448 x 2048, 0.500 at 1224 x 1024, where
+      // the fast-ball pass found it twice). The gate now keeps such peaks
+      // apart (BlobList::pale) and the detector judges them by shape and
+      // place (detector_pale_balls.cpp): 1.000 at both sizes.
+      {"tungsten_bright_sun_amber_light_ball", tungstenBrightSunAmberLightBall},
   };
   return list;
 }
@@ -696,20 +712,9 @@ TEST(SceneColorSweepSunBall, ABallInTheYellowsColorIsCenteredLikeAnyBall) {
 // --gtest_also_run_disabled_tests, DV_SCENE_FULL=1 and DV_MISSES=1).
 const std::vector<Condition>& openConditions() {
   static const std::vector<Condition> list = {
-      // Brighter sun patches (2.0..2.3) over a lighter ball: under
-      // tungsten it clips in two channels, (253, 254, 133), and at 1224 x
-      // 1024 its disc has no unclipped sample that is not a mix with the
-      // lit carpet (ball recall 0.000; cold LED holds, see
-      // cold_sun_over_the_pale_ball_lemon above). Under a
-      // magenta cast the ball, (255, 207, 111), is nearer to yellow than to
-      // any class, but paler than its reach (0.750 at 2448 x 2048). The
-      // robots hold (SceneColorSweepSunEdge).
-      {"tungsten_bright_sun_amber_light_ball", [](SceneSpec& s, int) {
-         cast(s, kTungsten, 0.8);
-         s.materials.yellow = {250, 165, 0};
-         s.materials.ball = {255, 150, 40};
-         s.lighting.sun_patches = {{{-1500, 700}, 700, 600, 0.0, 2.3, 0.2}};
-       }},
+      // A sun patch (2.0) under a magenta cast: the ball, (255, 207, 111),
+      // is nearer to yellow than to any class, but paler than its reach
+      // (0.750 at 2448 x 2048).
       {"magenta_cast_sun_over_the_ball_rose", [](SceneSpec& s, int) {
          cast(s, {1.2, 0.8, 1.2}, 0.8);
          s.materials.pink = {255, 140, 190};
@@ -740,16 +745,30 @@ const std::vector<Condition>& openConditions() {
 // neighbours, read clipped toward white and was labelled pink, id 11; the
 // robot was then dropped beside the real 11 (recall 0.955 here, 0.989 over
 // the four placements). A clipped read beside three seen sides now only
-// guesses the slot, and the teammates' ids settle it. The condition's ball
-// stays open; its robots hold.
+// guesses the slot, and the teammates' ids settle it.
 TEST(SceneColorSweepSunEdge, ALoneClippedDotIsSettledByTheTeammatesIds) {
-  const Condition& c = openConditions()[0];
-  ASSERT_STREQ(c.name, "tungsten_bright_sun_amber_light_ball");
   SceneScore s;
-  score(conditionScene(c, 2, false), 1, true, s);
+  score(conditionScene({"tungsten_bright_sun_amber_light_ball", tungstenBrightSunAmberLightBall}, 2, false), 1, true,
+        s);
   EXPECT_EQ(s.recall(), 1.0);
   EXPECT_EQ(s.precision(), 1.0);
   EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
+// The same condition's ball, clipped pale in every placement at 2448 x
+// 2048: its peak is dropped by the color gate and kept apart; one whole
+// ball's disc standing on the carpet makes it the ball, centered on that
+// disc. Without the pale list and its judge, no ball in any placement.
+TEST(SceneColorSweepSunBall, ABallClippedPaleIsFoundByItsShapeAndPlace) {
+  for (int k : {0, 1}) {
+    SceneScore s;
+    score(conditionScene({"tungsten_bright_sun_amber_light_ball", tungstenBrightSunAmberLightBall}, k, false), 1, true,
+          s);
+    SCOPED_TRACE("placement " + std::to_string(k));
+    ASSERT_EQ(s.ball_err.size(), 1u);
+    EXPECT_LE(s.ball_err[0], 1.5);
+    EXPECT_EQ(s.ballPrecision(), 1.0);
+  }
 }
 
 class SceneColorSweepOpen : public ::testing::TestWithParam<size_t> {};

@@ -5,13 +5,9 @@
 // blob is compared with a class by the nearest color that would clip to
 // what was seen, not by the clipped color itself.
 #include "detection/color_classes.h"
+#include "pipeline/blob.h"  // kClipLevel
 
 namespace dv {
-
-// Mean channel level (0..255) from which a blob's channel counts as
-// clipped: a saturated disc averages below 255 through its rim, blur and
-// the sensor noise (the sweep's clipped ball at 1224 x 1024: 246).
-inline constexpr float kClipLevel = 240.f;
 
 // The candidate colors of one blob: its mean RGB, with a clipped channel
 // free to grow up to kMaxClipGain times.

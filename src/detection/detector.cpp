@@ -18,6 +18,7 @@ Detector::Impl::Impl(const CameraModel& cam, const FieldModel& f, const Detector
   ball_cands.reserve(1024);
   marker_colored.reserve(1024);
   border_balls.reserve(64);
+  pale.reserve(BlobList::kMaxPale);
   samples.reserve(512);
   labels.reserve(512);
   sample_rgb.reserve(512);
@@ -124,6 +125,7 @@ void Detector::Impl::process(const BlobList& list, double t, Detections& out, co
   } else {
     classes[kWhite].reset();
   }
+  pale.assign(list.pale.begin(), list.pale.end());
   raw_positions.clear();
   for (const Blob& b : list.blobs) raw_positions.push_back(b.position);
   for (const Blob& b : list.weak) raw_positions.push_back(b.position);

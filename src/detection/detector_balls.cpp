@@ -17,17 +17,6 @@ constexpr float kThinLineColorReach = 3 * kMinClassRadius;
 // that of a disc cut cleanly by a line with a pixel of blur.
 constexpr double kBorderFullOverlap = 0.8;
 
-// A round blob's strength: its score against a share of the frame's robot
-// blobs' median score, unclamped (for ranking); 1 where no robot gives one.
-constexpr double kBlobFullStrengthShare = 0.4;
-double blobStrengthRatio(double score, double strength_ref) {
-  return strength_ref > 0 ? score / (kBlobFullStrengthShare * strength_ref) : 1.0;
-}
-// The same, full from that share on.
-double blobStrength(double score, double strength_ref) {
-  return std::min(1.0, blobStrengthRatio(score, strength_ref));
-}
-
 }  // namespace
 
 double Detector::Impl::ballTemporal(BallCandidate& c, bool tracking) {
@@ -92,21 +81,8 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   }
   const BallColorJudge judge(ball_colors, min_ball_brightness);
   const BallColorJudge judge_unfaded(ball_colors, min_ball_brightness, false);
-  const double keep_out = minBallOutsideDistance(opt.ball_radius);
-  // Rules: at least 80 % of the ball is outside every robot's top. Nor is
-  // blob i a ball where its picture lies on a robot's top, read on the
-  // top's plane: the top stands between whatever lies below and the camera
-  // (a robot's pale pink dot by the image's edge, left over by its pattern,
-  // lay 133 mm from its center on the ball's plane).
   auto insideRobot = [&](const FieldMm& p, int i = -1) {
-    for (const auto& r : robots) {
-      if (i >= 0 && distanceToRobotTop(blobs[i].at_team[r.team == Team::Yellow ? 0 : 1], r.pose.position,
-                                       r.pose.orientation) == 0)
-        return true;
-      if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
-      if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) return true;
-    }
-    return false;
+    return insideAnyRobot(p, i >= 0 ? blobs[i].at_team : nullptr);
   };
   // Whether another strong blob lies within a pattern's reach of blob i.
   auto dotsAround = [&](int i) {
@@ -382,6 +358,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   }
   const bool marker_colored_ball = ball_cands.empty();
   if (marker_colored_ball) addMarkerColoredBalls(judge, strength_ref, tracking);
+  if (ball_cands.empty()) addPaleBalls(strength_ref, tracking);
   selectBalls(ball_cands, opt.ball_radius, opt.max_balls);
 
   // Learn orange from a convincing ball, the field from the clutter.
@@ -417,7 +394,7 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
     std::optional<ImagePx> px;
     if (bb) {
       px = bb->center;
-    } else if (c.blob < n_strong) {
+    } else if (c.blob >= 0 && c.blob < n_strong) {
       const FieldMm at_plane = raw_positions[c.blob];
       px = camera.fieldToImage({at_plane.x, at_plane.y, plane});
     } else {
@@ -478,6 +455,18 @@ bool Detector::Impl::onGoalWall(const FieldMm& p) const {
     const double s = n > 0 ? double(k) / n : 0.0;
     if (field.distanceToGoalWalls({ground.x + (top.x - ground.x) * s, ground.y + (top.y - ground.y) * s}) < reach)
       return true;
+  }
+  return false;
+}
+
+bool Detector::Impl::insideAnyRobot(const FieldMm& p, const FieldMm* at_team) const {
+  const double keep_out = minBallOutsideDistance(opt.ball_radius);
+  for (const auto& r : robots) {
+    if (at_team && distanceToRobotTop(at_team[r.team == Team::Yellow ? 0 : 1], r.pose.position,
+                                      r.pose.orientation) == 0)
+      return true;
+    if (dist(p, r.pose.position) > RobotPatternGeometry::kTopRadius + keep_out) continue;
+    if (distanceToRobotTop(p, r.pose.position, r.pose.orientation) < keep_out) return true;
   }
   return false;
 }

@@ -41,6 +41,17 @@ constexpr int kMaxSlotCandidates = 3;  // blobs per predicted slot (tracking)
 // Streak score at which a fast-ball candidate counts at full strength.
 constexpr double kStreakFullStrength = 0.6;
 
+// A round blob's strength: its score against a share of the frame's robot
+// blobs' median score, unclamped (for ranking); 1 where no robot gives one.
+constexpr double kBlobFullStrengthShare = 0.4;
+inline double blobStrengthRatio(double score, double strength_ref) {
+  return strength_ref > 0 ? score / (kBlobFullStrengthShare * strength_ref) : 1.0;
+}
+// The same, full from that share on.
+inline double blobStrength(double score, double strength_ref) {
+  return std::min(1.0, blobStrengthRatio(score, strength_ref));
+}
+
 inline ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
 
 }  // namespace detector_detail
@@ -344,6 +355,20 @@ struct Detector::Impl {
   };
   std::vector<MarkerColoredBlob> marker_colored;
   void addMarkerColoredBalls(const BallColorTest& judge, double strength_ref, bool tracking);
+  // Peaks the pixel stage's color gate dropped as clipped pale (BlobList::
+  // pale): the ball where no other is, where they show one whole ball's
+  // disc standing out from the carpet around it, off the markings and
+  // every robot (detector_pale_balls.cpp). Appends the surest to
+  // ball_cands.
+  std::vector<Blob> pale;
+  void addPaleBalls(double strength_ref, bool tracking);
+  // Rules: at least 80 % of a ball at p (ball plane) is outside every
+  // robot's top. Nor is a blob a ball where its picture lies on a robot's
+  // top, read on the top's plane (`at_team`, the blob at the yellow and
+  // blue heights, where given): the top stands between whatever lies below
+  // and the camera (a robot's pale pink dot by the image's edge, left over
+  // by its pattern, lay 133 mm from its center on the ball's plane).
+  bool insideAnyRobot(const FieldMm& p, const FieldMm* at_team) const;
   // The ball candidate's temporal consistency: 1 where it continues a ball
   // track (or tracking is off), else less. Matches c to its track.
   double ballTemporal(BallCandidate& c, bool tracking);

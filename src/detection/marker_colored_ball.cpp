@@ -87,35 +87,52 @@ int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double
 }
 
 // Per-channel median chromaticity of n ring samples.
-ColorVec medianColor(const float* ring, int n) {
-  float v[kRingSamples], median[3];
+void medianRgb(const float* ring, int n, float median[3]) {
+  float v[kRingSamples];
   for (int k = 0; k < 3; ++k) {
     for (int i = 0; i < n; ++i) v[i] = ring[3 * i + k];
     std::nth_element(v, v + n / 2, v + n);
     median[k] = v[n / 2];
   }
+}
+ColorVec medianColor(const float* ring, int n) {
+  float median[3];
+  medianRgb(ring, n, median);
   return colorFeature(median[0], median[1], median[2]);
+}
+
+// The carpet as it lies beyond the top of a robot a blob at `center` would
+// be the center of, in the ball's own light (a sun patch's lit carpet):
+// that ring's median color, where at least half the ring shows it within a
+// color's noise. (Around a side dot of a robot not found, in a sun patch
+// at gamma 0.74, the ring crossed its top and a neighbour's: its median
+// lay near the tops', 7 of its 24 samples within the noise.)
+bool carpetBeyond(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& beyond) {
+  float ring[3 * kRingSamples];
+  const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring, kBeyondTopMm);
+  if (2 * n < kRingSamples) return false;
+  beyond = medianColor(ring, n);
+  int alike = 0;
+  for (int i = 0; i < n; ++i) alike += ClippedColor(ring + 3 * i).distance(beyond) <= kMinClassRadius;
+  return alike >= kMinCarpetAroundBall * kRingSamples;
 }
 }  // namespace
 
+double ringLikeTheCarpetBeyond(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm) {
+  ColorVec beyond;
+  if (!carpetBeyond(frame, center, radius_px, ball_radius_mm, beyond)) return 0;
+  float ring[3 * kRingSamples];
+  const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
+  int alike = 0;
+  for (int i = 0; i < n; ++i) alike += ClippedColor(ring + 3 * i).distance(beyond) <= kMinClassRadius;
+  return static_cast<double>(alike) / kRingSamples;
+}
+
 double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness, int* may_be_top) {
-  float ring[3 * kRingSamples];
-  // The carpet as it lies beyond the top of a robot this blob would be the
-  // center of, in the ball's own light (a sun patch's lit carpet): that
-  // ring's median color, where at least half the ring shows it within a
-  // color's noise. (Around a side dot of a robot not found, in a sun patch
-  // at gamma 0.74, the ring crossed its top and a neighbour's: its median
-  // lay near the tops', 7 of its 24 samples within the noise.)
   ColorVec beyond;
-  const int n_beyond = ringSamples(frame, center, radius_px, ball_radius_mm, ring, kBeyondTopMm);
-  bool has_beyond = false;
-  if (2 * n_beyond >= kRingSamples) {
-    beyond = medianColor(ring, n_beyond);
-    int alike = 0;
-    for (int i = 0; i < n_beyond; ++i) alike += ClippedColor(ring + 3 * i).distance(beyond) <= kMinClassRadius;
-    has_beyond = alike >= kMinCarpetAroundBall * kRingSamples;
-  }
+  const bool has_beyond = carpetBeyond(frame, center, radius_px, ball_radius_mm, beyond);
+  float ring[3 * kRingSamples];
   const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
   int carpet = 0, dark = 0;
   for (int i = 0; i < n; ++i) {
@@ -146,11 +163,18 @@ double carpetAroundBall(const FrameView& frame, const FrameColors* colors, Image
   return static_cast<double>(carpet) / kRingSamples;
 }
 
-bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& color) {
+bool rgbAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float rgb[3]) {
   float ring[3 * kRingSamples];
   const int n = ringSamples(frame, center, radius_px, ball_radius_mm, ring);
   if (2 * n < kRingSamples) return false;
-  color = medianColor(ring, n);
+  medianRgb(ring, n, rgb);
+  return true;
+}
+
+bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& color) {
+  float rgb[3];
+  if (!rgbAroundBall(frame, center, radius_px, ball_radius_mm, rgb)) return false;
+  color = colorFeature(rgb[0], rgb[1], rgb[2]);
   return true;
 }
 

@@ -83,10 +83,17 @@ class MarkerColoredBallTest final : public BallColorTest {
 inline constexpr double kMinCarpetAroundBall = 0.5;
 double carpetAroundBall(const FrameView& frame, const FrameColors* colors, ImagePx center, double radius_px,
                         double ball_radius_mm, float brightness, int* may_be_top = nullptr);
+// The share (0..1) of that ring within a color's noise of the carpet beyond
+// a robot's reach around `center` (0 where that carpet is not one color):
+// around a ball alone, the ring is the carpet it lies on; around a robot's
+// center, its top.
+double ringLikeTheCarpetBeyond(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm);
 // What lies around a ball on the same ring: the chromaticity of its
 // per-channel median. Around a ball alone that is the carpet (a fast
 // ball's streak covers less than half the ring). False where less than
 // half the ring lies in the image.
 bool colorAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, ColorVec& color);
+// The same ring's per-channel median RGB.
+bool rgbAroundBall(const FrameView& frame, ImagePx center, double radius_px, double ball_radius_mm, float rgb[3]);
 
 }  // namespace dv

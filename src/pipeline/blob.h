@@ -1,6 +1,7 @@
 #pragma once
 // What the pixel pipeline hands to detection: blobs found on the rectified
 // field grid of one camera frame.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,17 @@ struct Blob {
   // only ever a ball candidate, `score` is the streak score.
   bool streak = false;
 };
+
+// Mean channel level (0..255) from which a blob's channel counts as
+// clipped: a saturated disc averages below 255 through its rim, blur and
+// the sensor noise (the sweep's clipped ball at 1224 x 1024: 246).
+inline constexpr float kClipLevel = 240.f;
+
+// Clipped in two or three channels: over-exposed toward a pale yellow or
+// white, whatever its color was.
+inline bool clippedPale(const float rgb[3]) {
+  return (rgb[0] >= kClipLevel) + (rgb[1] >= kClipLevel) + (rgb[2] >= kClipLevel) >= 2;
+}
 
 // The color of the field's white lines in one frame (pipeline/
 // blob_color_gate.h), 0..255 per channel: the frame's neutral, from which
@@ -55,6 +67,24 @@ struct BlobList {
   // they are mostly carpet texture and noise; the detector takes one only
   // where a robot pattern of strong blobs predicts a side blob.
   std::vector<Blob> weak;
+  // Strong peaks the color gate dropped that clipped pale (clippedPale):
+  // after the lines' white balance a ball in a sun patch, clipped to (245,
+  // 250, 225) or (255, 254, 143), is as little saturated as a line
+  // crossing. Only ever a ball candidate, judged by its shape and place
+  // (detector_pale_balls.cpp); at most kMaxPale, strongest first.
+  static constexpr size_t kMaxPale = 16;
+  std::vector<Blob> pale;
+  // Clears the lists (pale's room reserved once).
+  void clear() {
+    blobs.clear();
+    weak.clear();
+    if (pale.capacity() < kMaxPale) pale.reserve(kMaxPale);
+    pale.clear();
+  }
+  // Keeps a strong peak the gate dropped where it clipped pale.
+  void keepIfPale(const Blob& b) {
+    if (pale.size() < kMaxPale && clippedPale(b.rgb)) pale.push_back(b);
+  }
   NeutralColor neutral;
   CarpetColor carpet;
   // The saturation (max - min) / max, after the lines' white balance, a

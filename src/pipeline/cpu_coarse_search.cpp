@@ -157,6 +157,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
     if (!b.streak) addReach(b.position);
   for (int k = 0; k < expected.n; ++k) addReach(expected.at[k]);
   for (const Blob& b : out.weak) addPeak(b.position);
+  for (const Blob& b : out.pale) addPeak(b.position);
   // Regions that grew into each other since: merged where they fit.
   for (size_t i = 0; i < regions.size(); ++i)
     for (size_t j = i + 1; j < regions.size();) {
@@ -200,8 +201,7 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
   streak_centers.clear();
   for (const Blob& b : out.blobs)
     if (b.streak) streak_centers.push_back(grid.toGrid(b.position));
-  out.blobs.clear();
-  out.weak.clear();
+  out.clear();
   // The frame's saturation scale from its strong peaks (blob_color_gate.h).
   found_rgb.clear();
   color_gate.beginPeaks();
@@ -229,7 +229,10 @@ bool CpuPipeline::Impl::coarseProcess(const cv::Mat& raw, BlobList& out) {
     } else {
       meanColor(b.grid, b.rgb);
     }
-    if (!saturated(b)) continue;
+    if (!saturated(b)) {
+      if (strong) out.keepIfPale(b);
+      continue;
+    }
     (strong ? out.blobs : out.weak).push_back(b);
     if (strong) reach.keep(b.grid.x, b.grid.y);
     spacing.keep(b.grid.x, b.grid.y);

@@ -261,8 +261,7 @@ float CpuPipeline::Impl::frameLuma(const cv::Mat& raw, bool bayer) {
 }
 
 bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
-  out.blobs.clear();
-  out.weak.clear();
+  out.clear();
   out.plane_height = opt.plane_height;
   if (!checkFrame(raw)) return false;
   const bool bayer = raw.channels() == 1;
@@ -342,7 +341,10 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
       blob.position = grid.toField(blob.grid);
       blob.score = c.score;
       meanColor(blob.grid, blob.rgb);
-      if (!saturated(blob)) continue;
+      if (!saturated(blob)) {
+        if (&list == &out.blobs) out.keepIfPale(blob);
+        continue;
+      }
       list.push_back(blob);
       spacing.keep(blob.grid.x, blob.grid.y);
     }
@@ -394,7 +396,11 @@ bool CpuPipeline::Impl::process(const cv::Mat& raw, BlobList& out) {
                       [&](int a, int b) { return merged[a].score > merged[b].score; });
     for (size_t i = 0; i < keep && list.size() < max_size; ++i) {
       const Blob& blob = merged_blobs[rank[i]];
-      if (spacing.nearKept(merged[rank[i]].x, merged[rank[i]].y) || !saturated(blob)) continue;
+      if (spacing.nearKept(merged[rank[i]].x, merged[rank[i]].y)) continue;
+      if (!saturated(blob)) {
+        if (&list == &out.blobs) out.keepIfPale(blob);
+        continue;
+      }
       list.push_back(blob);
       spacing.keep(blob.grid.x, blob.grid.y);
     }

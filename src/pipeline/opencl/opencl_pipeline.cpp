@@ -101,8 +101,7 @@ std::optional<ImagePx> OpenClPipeline::gridToImage(GridPx g) const {
 }
 
 bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
-  out.blobs.clear();
-  out.weak.clear();
+  out.clear();
   out.plane_height = opt_.plane_height;
   const auto& cfg = engine_->config();
   // The same checks and messages as the CPU reference.
@@ -182,7 +181,10 @@ bool OpenClPipeline::process(const cv::Mat& raw, BlobList& out) {
     b.position = grid_.toField(b.grid);
     b.score = p.score;
     b.rgb[0] = p.r, b.rgb[1] = p.g, b.rgb[2] = p.b;
-    if (!color_gate_.colored(b.rgb)) continue;
+    if (!color_gate_.colored(b.rgb)) {
+      if (!weak) out.keepIfPale(b);
+      continue;
+    }
     spacing_.keep(b.grid.x, b.grid.y);
     if (weak) {
       out.weak.push_back(b);
