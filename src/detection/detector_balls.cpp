@@ -17,6 +17,17 @@ constexpr float kThinLineColorReach = 3 * kMinClassRadius;
 // that of a disc cut cleanly by a line with a pixel of blur.
 constexpr double kBorderFullOverlap = 0.8;
 
+// A round blob's strength: its score against a share of the frame's robot
+// blobs' median score, unclamped (for ranking); 1 where no robot gives one.
+constexpr double kBlobFullStrengthShare = 0.4;
+double blobStrengthRatio(double score, double strength_ref) {
+  return strength_ref > 0 ? score / (kBlobFullStrengthShare * strength_ref) : 1.0;
+}
+// The same, full from that share on.
+double blobStrength(double score, double strength_ref) {
+  return std::min(1.0, blobStrengthRatio(score, strength_ref));
+}
+
 }  // namespace
 
 double Detector::Impl::ballTemporal(BallCandidate& c, bool tracking) {
@@ -545,14 +556,18 @@ void Detector::Impl::addMarkerColoredBalls(const BallColorTest& judge, double st
     BallCandidate c;
     c.blob = m.blob;
     c.pos = b.at_ball;
-    const double temporal = ballTemporal(c, tracking);
-    c.confidence = carpet * blobStrength(b.score, strength_ref) * temporal;
-    c.rank = carpet * blobStrengthRatio(b.score, strength_ref) * temporal;
-    if (c.confidence >= opt.min_ball_confidence && (best < 0 || c.rank > ball_cands[best].rank)) {
-      if (best < 0) best = static_cast<int>(ball_cands.size()), ball_cands.push_back(c);
-      ball_cands[best] = c;
-    }
+    keepSurest(c, carpet, b.score, strength_ref, tracking, best);
   }
+}
+
+void Detector::Impl::keepSurest(BallCandidate c, double carpet, double score, double strength_ref, bool tracking,
+                                int& best) {
+  const double temporal = ballTemporal(c, tracking);
+  c.confidence = carpet * blobStrength(score, strength_ref) * temporal;
+  c.rank = carpet * blobStrengthRatio(score, strength_ref) * temporal;
+  if (c.confidence < opt.min_ball_confidence || (best >= 0 && c.rank <= ball_cands[best].rank)) return;
+  if (best < 0) best = static_cast<int>(ball_cands.size()), ball_cands.push_back(c);
+  ball_cands[best] = c;
 }
 
 }  // namespace dv

@@ -41,17 +41,6 @@ constexpr int kMaxSlotCandidates = 3;  // blobs per predicted slot (tracking)
 // Streak score at which a fast-ball candidate counts at full strength.
 constexpr double kStreakFullStrength = 0.6;
 
-// A round blob's strength: its score against a share of the frame's robot
-// blobs' median score, unclamped (for ranking); 1 where no robot gives one.
-constexpr double kBlobFullStrengthShare = 0.4;
-inline double blobStrengthRatio(double score, double strength_ref) {
-  return strength_ref > 0 ? score / (kBlobFullStrengthShare * strength_ref) : 1.0;
-}
-// The same, full from that share on.
-inline double blobStrength(double score, double strength_ref) {
-  return std::min(1.0, blobStrengthRatio(score, strength_ref));
-}
-
 inline ColorVec feature(const ColorRef& c) { return colorFeature(c.r, c.g, c.b); }
 
 }  // namespace detector_detail
@@ -362,6 +351,12 @@ struct Detector::Impl {
   // ball_cands.
   std::vector<Blob> pale;
   void addPaleBalls(double strength_ref, bool tracking);
+  // A fallback's candidate judged by where it lies (`carpet`: the share of
+  // its ring that is carpet; `score`: its peak's): confidence and rank
+  // from both and its track, kept where it is the fallback's surest so far
+  // (`best`: its index in ball_cands, -1 before the first). One ball at
+  // most: a sun patch's lit carpet makes many peaks alike.
+  void keepSurest(BallCandidate c, double carpet, double score, double strength_ref, bool tracking, int& best);
   // Rules: at least 80 % of a ball at p (ball plane) is outside every
   // robot's top. Nor is a blob a ball where its picture lies on a robot's
   // top, read on the top's plane (`at_team`, the blob at the yellow and

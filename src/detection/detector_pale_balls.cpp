@@ -91,13 +91,7 @@ void Detector::Impl::addPaleBalls(double strength_ref, bool tracking) {
     const auto on_plane = camera.imageToField(center, opt.ball_radius);
     BallCandidate c;
     c.pos = on_plane ? FieldMm{on_plane->x, on_plane->y} : at_ball;
-    const double temporal = ballTemporal(c, tracking);
-    c.confidence = carpet * blobStrength(b.score, strength_ref) * temporal;
-    c.rank = carpet * blobStrengthRatio(b.score, strength_ref) * temporal;
-    if (c.confidence >= opt.min_ball_confidence && (best < 0 || c.rank > ball_cands[best].rank)) {
-      if (best < 0) best = static_cast<int>(ball_cands.size()), ball_cands.push_back(c);
-      ball_cands[best] = c;
-    }
+    keepSurest(c, carpet, b.score, strength_ref, tracking, best);
   }
 }
 
