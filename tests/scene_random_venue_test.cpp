@@ -5,6 +5,9 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "scene_scoring.h"
@@ -551,6 +554,23 @@ TEST(SceneRandomVenue, APaleBallBesideARobotsBodyIsTheBall) {
                                    {254, 116, 20}, {1.29, 0.89, 0.98}, 0.41, 1.53, 0.99, 1.00, -1.82, 2.29});
   EXPECT_EQ(s.ballRecall(), 1.0);
   EXPECT_EQ(s.ballPrecision(), 1.0);
+}
+
+// A venue YAML the script wrote (DV_VENUE=PATH), scored as the script
+// scores it, at half resolution: with DV_MISSES=1 (and DV_DUMP=DIR) what
+// it lost and the blobs around each. A tool for looking, not a bar.
+TEST(SceneRandomVenue, DISABLED_AVenueFileWithItsMisses) {
+  const char* path = std::getenv("DV_VENUE");
+  if (!path) GTEST_SKIP() << "DV_VENUE names no venue YAML";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  std::stringstream text;
+  text << in.rdbuf();
+  SceneSpec s = sceneFromYaml(text.str(), path);
+  halveResolution(s);
+  SceneScore sc;
+  score(s, 1, true, sc);
+  std::printf("%s\n", sc.summary(path).c_str());
 }
 
 }  // namespace

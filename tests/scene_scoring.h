@@ -93,8 +93,24 @@ inline BayerPattern pipelineBayer(const SceneSpec& spec) {
   return BayerPattern::RGGB;
 }
 
-// What a sweep saw of a robot it lost (DV_MISSES): the blobs and weak
-// peaks within 150 mm of it and where its five blobs should lie on the
+// With DV_DUMP=DIR: a crop of the frame around field point `p`, 4x
+// enlarged, as DIR/<name>.png.
+inline void dumpCrop(const cv::Mat& image, const CameraModel& cam, const FieldPoint& p, const std::string& name) {
+  const char* dir = std::getenv("DV_DUMP");
+  const auto px = cam.fieldToImage(p);
+  if (!dir || !px) return;
+  cv::Mat bgr = image;
+  if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_BayerBG2BGR);  // the renderer's RGGB
+  const int r = 60 * bgr.cols / 1224;
+  const cv::Rect box = cv::Rect(static_cast<int>(px->u) - r, static_cast<int>(px->v) - r, 2 * r, 2 * r) &
+                       cv::Rect(0, 0, bgr.cols, bgr.rows);
+  cv::Mat crop;
+  cv::resize(bgr(box), crop, {}, 4, 4, cv::INTER_NEAREST);
+  cv::imwrite(std::string(dir) + "/" + name + ".png", crop);
+}
+
+// What a sweep saw of a robot it lost (DV_MISSES): the blobs, weak and
+// pale peaks within 150 mm of it and where its five blobs should lie on the
 // blob plane; with DV_DUMP=DIR also a crop of the frame around it, DIR/
 // miss_<width>_<id>_<x>_<y>.png.
 template <class Truth>
@@ -110,24 +126,16 @@ void printMiss(const Truth& t, const cv::Mat& image, const CameraModel& cam, con
     std::printf(" (%.0f, %.0f)", p.x, p.y);
   }
   std::printf("\n");
-  for (int w = 0; w < 2; ++w)
-    for (const auto& b : w ? blobs.weak : blobs.blobs)
+  const std::vector<Blob>* lists[3] = {&blobs.blobs, &blobs.weak, &blobs.pale};
+  const char* names[3] = {"blob", "weak peak", "pale peak"};
+  for (int w = 0; w < 3; ++w)
+    for (const auto& b : *lists[w])
       if (std::hypot(b.position.x - c.x, b.position.y - c.y) < 150)
-        std::printf("  %s at (%.0f, %.0f), score %.2f, rgb %.0f %.0f %.0f\n", w ? "weak peak" : "blob", b.position.x,
+        std::printf("  %s at (%.0f, %.0f), score %.2f, rgb %.0f %.0f %.0f\n", names[w], b.position.x,
                     b.position.y, b.score, b.rgb[0], b.rgb[1], b.rgb[2]);
-  const char* dir = std::getenv("DV_DUMP");
-  const auto px = cam.fieldToImage({t.x(), t.y(), t.height()});
-  if (!dir || !px) return;
-  cv::Mat bgr = image;
-  if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_BayerBG2BGR);  // the renderer's RGGB
-  const int r = 60 * bgr.cols / 1224;
-  const cv::Rect box = cv::Rect(static_cast<int>(px->u) - r, static_cast<int>(px->v) - r, 2 * r, 2 * r) &
-                       cv::Rect(0, 0, bgr.cols, bgr.rows);
-  cv::Mat crop;
-  cv::resize(bgr(box), crop, {}, 4, 4, cv::INTER_NEAREST);
-  const std::string name = std::string(dir) + "/miss_" + std::to_string(bgr.cols) + "_" + std::to_string(t.robot_id()) +
-                           "_" + std::to_string(static_cast<int>(t.x())) + "_" + std::to_string(static_cast<int>(t.y())) + ".png";
-  cv::imwrite(name, crop);
+  dumpCrop(image, cam, {t.x(), t.y(), t.height()},
+           "miss_" + std::to_string(image.cols) + "_" + std::to_string(t.robot_id()) + "_" +
+               std::to_string(static_cast<int>(t.x())) + "_" + std::to_string(static_cast<int>(t.y())));
 }
 
 // Runs `frames` frames of `spec` (camera 0). `alone`: every frame is
@@ -258,8 +266,18 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
     for (const auto& d : out.balls) {
       bool real = false;
       for (const auto& b : frame.truth.balls()) real |= std::hypot(d.position.x - b.x(), d.position.y - b.y()) < 50;
-      if (!real && std::getenv("DV_MISSES"))
-        std::printf("false ball at (%.0f, %.0f), confidence %.2f\n", d.position.x, d.position.y, d.confidence);
+      if (real || !std::getenv("DV_MISSES")) continue;
+      std::printf("false ball at (%.0f, %.0f), confidence %.2f\n", d.position.x, d.position.y, d.confidence);
+      const Eigen::Vector3d cpos = cam.position();
+      const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - 21.5);
+      const double bx = cpos.x() + k * (d.position.x - cpos.x()), by = cpos.y() + k * (d.position.y - cpos.y());
+      for (const auto& b : blobs.blobs)
+        if (std::hypot(b.position.x - bx, b.position.y - by) < 60)
+          std::printf("  blob at (%.0f, %.0f), score %.2f, rgb %.0f %.0f %.0f%s\n", b.position.x, b.position.y,
+                      b.score, b.rgb[0], b.rgb[1], b.rgb[2], b.streak ? ", a streak" : "");
+      dumpCrop(frame.image, cam, {d.position.x, d.position.y, 21.5},
+               "false_ball_" + std::to_string(frame.image.cols) + "_" + std::to_string(static_cast<int>(d.position.x)) +
+                   "_" + std::to_string(static_cast<int>(d.position.y)));
     }
   }
 }
