@@ -141,14 +141,11 @@ void Detector::Impl::findBalls(double t, bool tracking, Detections& out) {
   ColorVec field_sum;
   int field_n = 0;
   marker_colored.clear();
-  const double margin = 50;
   for (int i = 0; i < n_strong; ++i) {  // never a weak peak
     const FrameBlob& b = blobs[i];
     if (!b.valid || b.robot >= 0) continue;
     const FieldMm p = b.at_ball;
-    if (p.x < ball_area.x_min - margin || p.x > ball_area.x_max + margin ||
-        p.y < ball_area.y_min - margin || p.y > ball_area.y_max + margin)
-      continue;
+    if (!inBallArea(p)) continue;
     ClippedColor seen(b.rgb);
     if (seen.saturated()) {
       // Over-exposed (a sun patch): two clipped channels say too little, so

@@ -53,6 +53,13 @@ struct Detector::Impl {
   Eigen::Vector3d cam_pos;
   double ref_height = 140;
   FieldRect ball_area;
+  // Whether a ball at p (field mm) lies in ball_area or up to 50 mm
+  // beyond it (a ball on the boundary line, measured to its center).
+  bool inBallArea(const FieldMm& p) const {
+    constexpr double kMargin = 50;
+    return p.x >= ball_area.x_min - kMargin && p.x <= ball_area.x_max + kMargin &&
+           p.y >= ball_area.y_min - kMargin && p.y <= ball_area.y_max + kMargin;
+  }
 
   ColorClass classes[kNumClasses];
   ColorVec frame_color[kNumClasses];  // this frame's class colors

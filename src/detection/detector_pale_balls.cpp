@@ -45,10 +45,6 @@ class PaleBallTest final : public BallColorTest {
   float carpet_[3], half2_;
 };
 
-// The ball's place may lie this far beyond the field's boundary (mm), as
-// for any ball blob (findBalls).
-constexpr double kAreaMarginMm = 50;
-
 }  // namespace
 
 void Detector::Impl::addPaleBalls(double strength_ref, bool tracking) {
@@ -60,10 +56,8 @@ void Detector::Impl::addPaleBalls(double strength_ref, bool tracking) {
         !alongRay(b.position, plane_height, opt.robot_height_yellow, at_team[0]) ||
         !alongRay(b.position, plane_height, opt.robot_height_blue, at_team[1]))
       continue;
-    if (at_ball.x < ball_area.x_min - kAreaMarginMm || at_ball.x > ball_area.x_max + kAreaMarginMm ||
-        at_ball.y < ball_area.y_min - kAreaMarginMm || at_ball.y > ball_area.y_max + kAreaMarginMm)
+    if (!inBallArea(at_ball) || onMarking(at_ball) || onGoalWall(at_ball) || insideAnyRobot(at_ball, at_team))
       continue;
-    if (onMarking(at_ball) || onGoalWall(at_ball) || insideAnyRobot(at_ball, at_team)) continue;
     const auto seen = camera.fieldToImage({b.position.x, b.position.y, plane_height});
     if (!seen) continue;
     const double r = ballRadiusPx(camera, {at_ball.x, at_ball.y, opt.ball_radius}, opt.ball_radius);
@@ -71,8 +65,8 @@ void Detector::Impl::addPaleBalls(double strength_ref, bool tracking) {
     if (!rgbAroundBall(frame_view, *seen, r, opt.ball_radius, ring)) continue;
     // Its chromaticity as seen, not as ClippedColor bounds it: two clipped
     // channels free to grow reach a lit carpet clipped in green (the
-    // condition's ring, (140, 220, 85)). A lit carpet's texture peak is the
-    // carpet's own color.
+    // condition's ring, about (143, 222, 87)). A lit carpet's texture peak
+    // is the carpet's own color.
     if (colorDistance(colorFeature(b.rgb[0], b.rgb[1], b.rgb[2]), colorFeature(ring[0], ring[1], ring[2])) <=
         kMinClassRadius)
       continue;

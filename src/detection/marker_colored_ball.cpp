@@ -86,7 +86,7 @@ int ringSamples(const FrameView& frame, ImagePx center, double radius_px, double
   return n;
 }
 
-// Per-channel median chromaticity of n ring samples.
+// Per-channel median RGB of n ring samples.
 void medianRgb(const float* ring, int n, float median[3]) {
   float v[kRingSamples];
   for (int k = 0; k < 3; ++k) {
