@@ -93,6 +93,14 @@ inline BayerPattern pipelineBayer(const SceneSpec& spec) {
   return BayerPattern::RGGB;
 }
 
+// Where a point at height z appears on the blob plane: the camera's ray
+// through it, met with the plane the grid lies on.
+inline FieldMm onBlobPlane(const CameraModel& cam, const BlobList& blobs, double x, double y, double z) {
+  const Eigen::Vector3d cpos = cam.position();
+  const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - z);
+  return {cpos.x() + k * (x - cpos.x()), cpos.y() + k * (y - cpos.y())};
+}
+
 // With DV_DUMP=DIR: a crop of the frame around field point `p`, 4x
 // enlarged, as DIR/<name>.png.
 inline void dumpCrop(const cv::Mat& image, const CameraModel& cam, const FieldPoint& p, const std::string& name) {
@@ -115,9 +123,7 @@ inline void dumpCrop(const cv::Mat& image, const CameraModel& cam, const FieldPo
 // miss_<width>_<id>_<x>_<y>.png.
 template <class Truth>
 void printMiss(const Truth& t, const cv::Mat& image, const CameraModel& cam, const BlobList& blobs) {
-  const Eigen::Vector3d cpos = cam.position();
-  const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - t.height());
-  auto onPlane = [&](double x, double y) { return FieldMm{cpos.x() + k * (x - cpos.x()), cpos.y() + k * (y - cpos.y())}; };
+  auto onPlane = [&](double x, double y) { return onBlobPlane(cam, blobs, x, y, t.height()); };
   const FieldMm c = onPlane(t.x(), t.y());
   std::printf("  center expected at (%.0f, %.0f), sides at", c.x, c.y);
   const double cs = std::cos(t.orientation()), sn = std::sin(t.orientation());
@@ -161,12 +167,10 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
 
     // Blobs near where a point at height z appears on the blob plane
     // (streak blobs only for balls: they are never part of a robot).
-    const Eigen::Vector3d cpos = cam.position();
     auto blobNear = [&](double x, double y, double z, double tol, bool ball = false) {
-      const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - z);
-      const double px = cpos.x() + k * (x - cpos.x()), py = cpos.y() + k * (y - cpos.y());
+      const FieldMm p = onBlobPlane(cam, blobs, x, y, z);
       for (const auto& b : blobs.blobs)
-        if ((ball || !b.streak) && std::hypot(b.position.x - px, b.position.y - py) < tol) return true;
+        if ((ball || !b.streak) && std::hypot(b.position.x - p.x, b.position.y - p.y) < tol) return true;
       return false;
     };
     // Side blobs seen of a robot whose center blob was seen, else -1.
@@ -247,10 +251,9 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
       }
       if (!matched && std::getenv("DV_MISSES")) {
         std::printf("missed: ball at (%.0f, %.0f), a blob there %s\n", b.x(), b.y(), complete ? "yes" : "no");
-        const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - b.z());
-        const double px = cpos.x() + k * (b.x() - cpos.x()), py = cpos.y() + k * (b.y() - cpos.y());
+        const FieldMm p = onBlobPlane(cam, blobs, b.x(), b.y(), b.z());
         for (const auto& bl : blobs.blobs)
-          if (std::hypot(bl.position.x - px, bl.position.y - py) < 15)
+          if (std::hypot(bl.position.x - p.x, bl.position.y - p.y) < 15)
             std::printf("  blob score %.2f, rgb %.0f %.0f %.0f%s\n", bl.score, bl.rgb[0], bl.rgb[1], bl.rgb[2],
                         bl.streak ? " (streak)" : "");
         ColorVec classes[Detector::kClassColorCount];
@@ -268,14 +271,13 @@ inline void score(const SceneSpec& spec, int frames, bool alone, SceneScore& s,
       for (const auto& b : frame.truth.balls()) real |= std::hypot(d.position.x - b.x(), d.position.y - b.y()) < 50;
       if (real || !std::getenv("DV_MISSES")) continue;
       std::printf("false ball at (%.0f, %.0f), confidence %.2f\n", d.position.x, d.position.y, d.confidence);
-      const Eigen::Vector3d cpos = cam.position();
-      const double k = (cpos.z() - blobs.plane_height) / (cpos.z() - 21.5);
-      const double bx = cpos.x() + k * (d.position.x - cpos.x()), by = cpos.y() + k * (d.position.y - cpos.y());
+      const double ball_z = spec.field.ball_radius;  // a ball resting on the carpet
+      const FieldMm at = onBlobPlane(cam, blobs, d.position.x, d.position.y, ball_z);
       for (const auto& b : blobs.blobs)
-        if (std::hypot(b.position.x - bx, b.position.y - by) < 60)
+        if (std::hypot(b.position.x - at.x, b.position.y - at.y) < 60)
           std::printf("  blob at (%.0f, %.0f), score %.2f, rgb %.0f %.0f %.0f%s\n", b.position.x, b.position.y,
                       b.score, b.rgb[0], b.rgb[1], b.rgb[2], b.streak ? ", a streak" : "");
-      dumpCrop(frame.image, cam, {d.position.x, d.position.y, 21.5},
+      dumpCrop(frame.image, cam, {d.position.x, d.position.y, ball_z},
                "false_ball_" + std::to_string(frame.image.cols) + "_" + std::to_string(static_cast<int>(d.position.x)) +
                    "_" + std::to_string(static_cast<int>(d.position.y)));
     }
