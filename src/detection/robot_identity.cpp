@@ -1,6 +1,7 @@
 #include "detection/robot_identity.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "detection/clipped_color.h"
 #include "detection/weak_sides.h"
@@ -27,15 +28,54 @@ bool pinkSideOfWhite(const ColorVec& dot, const ColorVec& white, const ColorVec&
   return along > 0;
 }
 
+// A lone slot read clipped beside three seen sides of one color: that
+// color is there only if the light there could clip it. Over a robot's top
+// the light is smooth, so the three dots give its plane: read in a channel
+// the slot clipped and none of the three did, the seen color is predicted
+// there by that plane (plus the change seen among the three, for a light
+// that bends). Where that stays below the clip level, the slot holds the
+// other color. (A sun patch under a magenta cast: greens read (165, 255,
+// 203) alike on three slots, the fourth a rose dot clipped to (254, 250,
+// 253); guessed green, blue 12 was reported as 8. At a sun patch's soft
+// edge the seen greens differ, (119, 210, 75) and (217, 255, 137), and a
+// third lit more clips toward white: a green fits, the slot stays a
+// guess.) Returns the unseen slot, or -1.
+int slotClippedBeyondItsNeighbours(const Hypothesis& r, const FieldMm at[4], const float rgb[4][3],
+                                   const bool read[4], const bool clipped[4],
+                                   const std::array<MarkerColor, 4>& colors) {
+  int lone = -1, seen[3], n = 0;
+  for (int s = 0; s < 4; ++s)
+    if (!(r.seen_sides >> s & 1)) lone = s;
+    else if (read[s]) seen[n++] = s;
+  if (lone < 0 || n != 3 || !read[lone] || !clipped[lone]) return -1;
+  if (colors[seen[0]] != colors[seen[1]] || colors[seen[0]] != colors[seen[2]]) return -1;
+  // The slot as an affine combination of the three (the weights a plane's
+  // values there are made of).
+  const double ax = at[seen[1]].x - at[seen[0]].x, ay = at[seen[1]].y - at[seen[0]].y;
+  const double bx = at[seen[2]].x - at[seen[0]].x, by = at[seen[2]].y - at[seen[0]].y;
+  const double px = at[lone].x - at[seen[0]].x, py = at[lone].y - at[seen[0]].y;
+  const double det = ax * by - ay * bx;
+  if (std::abs(det) < 1e-6) return -1;
+  const double u = (px * by - py * bx) / det, v = (ax * py - ay * px) / det;
+  for (int k = 0; k < 3; ++k) {
+    if (rgb[lone][k] < kClipLevel) continue;
+    const float l0 = rgb[seen[0]][k], l1 = rgb[seen[1]][k], l2 = rgb[seen[2]][k];
+    if (std::max({l0, l1, l2}) >= kClipLevel) continue;
+    const double predicted = (1 - u - v) * l0 + u * l1 + v * l2;
+    if (predicted + (std::max({l0, l1, l2}) - std::min({l0, l1, l2})) < kClipLevel) return lone;
+  }
+  return -1;
+}
+
 // The side slots of `r` that neither a blob nor a weak peak filled: the
 // color the camera saw there (seen_color.h), when clearly nearer to the
 // robot's own `green` or `pink`, sets the slot's marker. A dot read clipped
 // in two channels or more only guesses it: its hue is gone, and at a sun
 // patch's soft edge a green dot lit half as much again as its neighbours
 // clips toward white like a pink (a blue 6 read as 11 and dropped beside
-// the real 11; pinks clipped to (255, 253, 255) beside greens read
-// (166, 255, 205), ids 12 and 13 read as 8). Left unseen, the slot is
-// settled by the ids fully seen teammates hold (partial_ids.h).
+// the real 11). Left unseen, the slot is settled by the light its three
+// neighbours show (slotClippedBeyondItsNeighbours) or by the ids fully
+// seen teammates hold (partial_ids.h).
 void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& green, const ColorVec& pink,
                        std::array<MarkerColor, 4>& colors) {
   const std::vector<FrameBlob>& blobs = *c.blobs;
@@ -50,9 +90,11 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
   float dot_rgb[4][3];
   bool read[4] = {false, false, false, false};
   bool clipped[4] = {false, false, false, false};  // in two channels or more
+  FieldMm at[4];
   int n_read = 0;
   for (int s = 1; s < kPatternSlots; ++s) {
     const FieldMm p = slotPosition(at_team.pose.position, at_team.pose.orientation, s);
+    at[s - 1] = p;
     const SeenColor seen = seenDiscColor(c.frame, *c.camera, {p.x, p.y, z}, c.opt->probe_radius);
     if (seen.share < c.opt->min_probe_share) continue;
     dot[s - 1] = colorFeature(seen.rgb[0], seen.rgb[1], seen.rgb[2]);
@@ -60,6 +102,15 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     clipped[s - 1] = ClippedColor(seen.rgb).saturated();
     read[s - 1] = true;
     ++n_read;
+  }
+  if (lone) {
+    const int s = slotClippedBeyondItsNeighbours(r, at, dot_rgb, read, clipped, colors);
+    if (s >= 0) {
+      const int o = (s + 1) % 4;  // a seen side: the three share one color
+      colors[s] = colors[o] == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
+      r.seen_sides |= static_cast<uint8_t>(1u << s);
+      return;
+    }
   }
   if (n_read == 4) {
     // All four dots in view: where they are of two colors they split by
