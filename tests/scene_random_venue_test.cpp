@@ -94,6 +94,21 @@ TEST(SceneRandomVenue, ADotClippedWhiteKeepsItsSplit) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Extreme venue #282: a blue robot by the image's corner shows two green
+// dots, (167, 240, 164) and (177, 246, 169), and beside them two pink dots
+// lit toward white under uneven light of 2.9, (234, 236, 224) and one
+// clipped in green; none peaked. Too pale to split from the greens against
+// the blue center (eq. 5.24), both were guessed green: id 8 for 11. A dot
+// that no color the robot's seen dots may have (a clipped channel free to
+// grow) comes near is the other color (robot_identity.cpp); the robot is
+// then one of two ids, and at two side blobs not reported.
+TEST(SceneRandomVenue, APaleDotNoSeenColorExplainsIsTheOtherColor) {
+  const SceneScore s = venueScore({282, -2434, 573, {254, 135, 188}, {112, 197, 79}, {245, 202, 39}, {30, 59, 146},
+                                   {245, 87, 20}, {1.00, 1.18, 1.34}, 0.83, 1.50, 1.21, 2.95, -2.19, 0});
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 // Extreme venue #56: a sun patch of 2.24 over the ball under a cold cast
 // lights the carpet around it into weak peaks where a pattern's dots would
 // lie: a robot of the clipped ball and the carpet, and no ball. A weak peak

@@ -67,6 +67,32 @@ int slotClippedBeyondItsNeighbours(const Hypothesis& r, const FieldMm at[4], con
   return -1;
 }
 
+// An unseen slot's dot that can be none of the colors its robot's seen
+// dots show: where every seen side dot has one color, a dot clipped in no
+// channel, bright as a marker (kMarkerBrightness of the center) and
+// farther in chromaticity from every color each seen dot may have (a
+// clipped channel free to grow, ClippedColor) than twice a class's least
+// reach (a split one color's noise does not make, color_classes.cpp) is
+// the other color. (Desaturated cold light: greens read (167, 240, 164)
+// and (177, 246, 169), a pink dot beside them (234, 236, 224); too pale to
+// split from them against the blue center by eq. 5.24, it was guessed
+// green and blue 11 was reported as 8.)
+bool noColorOfTheSeenDots(const float x_rgb[3], const ColorVec& x, uint8_t seen, const float rgb[4][3],
+                          const bool read[4], const std::array<MarkerColor, 4>& colors, float center_brightness) {
+  if (ClippedColor(x_rgb).clipped() || x_rgb[0] + x_rgb[1] + x_rgb[2] < kMarkerBrightness * center_brightness)
+    return false;
+  int n = 0;
+  MarkerColor first = MarkerColor::Green;
+  for (int s = 0; s < 4; ++s) {
+    if (!(seen >> s & 1)) continue;
+    if (!read[s] || (n > 0 && colors[s] != first)) return false;
+    first = colors[s];
+    ++n;
+    if (ClippedColor(rgb[s]).distance(x) <= 2 * kMinClassRadius) return false;
+  }
+  return n > 0;
+}
+
 // The side slots of `r` that neither a blob nor a weak peak filled: the
 // color the camera saw there (seen_color.h), when clearly nearer to the
 // robot's own `green` or `pink`, sets the slot's marker. A dot read clipped
@@ -136,10 +162,18 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
       return;
     }
   }
+  const uint8_t seen = r.seen_sides;
+  const std::array<MarkerColor, 4> seen_colors = colors;
   for (int s = 0; s < 4; ++s) {
-    if (!read[s] || (r.seen_sides >> s & 1)) continue;
-    const int label =
+    if (!read[s] || (seen >> s & 1)) continue;
+    int label =
         sideColorOfDot(dot[s], dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
+    if (label < 0 && noColorOfTheSeenDots(dot_rgb[s], dot[s], seen, dot_rgb, read, seen_colors,
+                                          blobs[r.blob[0]].brightness())) {
+      const int o = __builtin_ctz(seen);
+      colors[s] = seen_colors[o] == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
+      label = 0;
+    }
     if (label < 0 || (clipped[s] && lone)) continue;
     r.seen_sides |= static_cast<uint8_t>(1u << s);
   }
