@@ -109,6 +109,20 @@ TEST(SceneRandomVenue, APaleDotNoSeenColorExplainsIsTheOtherColor) {
   EXPECT_EQ(s.idAccuracy(), 1.0);
 }
 
+// Extreme venue #383: blue 2's three green dots peaked, (158, 247, 235),
+// clipped in green; its pink, lit toward white under uneven light of 3,
+// read (238, 247, 239), clipped in green as they are, and made no peak.
+// Guessed green, the robot was reported as 8. Red to blue, the two
+// channels neither clipped, it shows 1.00 against the greens' 0.67: no
+// green (mayBeOneColor).
+TEST(SceneRandomVenue, ADotClippedAsItsNeighboursAreIsJudgedByTheRest) {
+  const SceneScore s = venueScore({383, -859, 1488, {250, 120, 184}, {52, 177, 124}, {247, 187, 24}, {21, 42, 132},
+                                   {251, 106, 20}, {1.14, 1.01, 1.17}, 0.53, 1.08, 1.27, 3.00, -1.26, 1.51});
+  EXPECT_EQ(s.recall(), 1.0);
+  EXPECT_EQ(s.precision(), 1.0);
+  EXPECT_EQ(s.idAccuracy(), 1.0);
+}
+
 // Extreme venue #56: a sun patch of 2.24 over the ball under a cold cast
 // lights the carpet around it into weak peaks where a pattern's dots would
 // lie: a robot of the clipped ball and the carpet, and no ball. A weak peak

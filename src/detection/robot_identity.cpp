@@ -67,19 +67,37 @@ int slotClippedBeyondItsNeighbours(const Hypothesis& r, const FieldMm at[4], con
   return -1;
 }
 
+// Whether dot `x` and a seen dot `d` may be one marker color under two
+// lights, within `radius` in chromaticity: the nearest color `d` may have
+// (a clipped channel free to grow, ClippedColor) to `x` where `x` clipped
+// nowhere, and, where neither clipped two channels, their shares of those
+// two (a light scales both alike; the third, clipped, says only "more").
+bool mayBeOneColor(const float x[3], const float d[3], float radius) {
+  const ClippedColor cx(x);
+  if (!cx.clipped() && ClippedColor(d).distance(colorFeature(x[0], x[1], x[2])) > radius) return false;
+  int u[3], n = 0;
+  for (int k = 0; k < 3; ++k)
+    if (x[k] < kClipLevel && d[k] < kClipLevel) u[n++] = k;
+  if (n != 2) return true;
+  // The two-channel chromaticity on colorFeature's scale (300 over the sum).
+  auto share = [&](const float* c) { return 300.f * c[u[0]] / (c[u[0]] + c[u[1]] + 10.f); };
+  return std::abs(share(x) - share(d)) * std::sqrt(2.f) <= radius;
+}
+
 // An unseen slot's dot that can be none of the colors its robot's seen
-// dots show: where every seen side dot has one color, a dot clipped in no
-// channel, bright as a marker (kMarkerBrightness of the center) and
-// farther in chromaticity from every color each seen dot may have (a
-// clipped channel free to grow, ClippedColor) than twice a class's least
-// reach (a split one color's noise does not make, color_classes.cpp) is
-// the other color. (Desaturated cold light: greens read (167, 240, 164)
-// and (177, 246, 169), a pink dot beside them (234, 236, 224); too pale to
-// split from them against the blue center by eq. 5.24, it was guessed
-// green and blue 11 was reported as 8.)
-bool noColorOfTheSeenDots(const float x_rgb[3], const ColorVec& x, uint8_t seen, const float rgb[4][3],
-                          const bool read[4], const std::array<MarkerColor, 4>& colors, float center_brightness) {
-  if (ClippedColor(x_rgb).clipped() || x_rgb[0] + x_rgb[1] + x_rgb[2] < kMarkerBrightness * center_brightness)
+// dots show: where every seen side dot has one color, a dot clipped in one
+// channel at most, bright as a marker (kMarkerBrightness of the center)
+// and no nearer to any of them than a split of one color's noise (twice a
+// class's least reach, color_classes.cpp; mayBeOneColor) is the other
+// color. (Desaturated cold light: greens read (167, 240, 164) and (177,
+// 246, 169), a pink dot beside them (234, 236, 224); too pale to split
+// from them against the blue center by eq. 5.24, it was guessed green and
+// blue 11 was reported as 8. Blue 2 beside greens (158, 247, 235): its
+// lone pink, (238, 247, 239), clipped in green as they are, shows red to
+// blue 1.00 against their 0.67; guessed green, it was reported as 8.)
+bool noColorOfTheSeenDots(const float x_rgb[3], uint8_t seen, const float rgb[4][3], const bool read[4],
+                          const std::array<MarkerColor, 4>& colors, float center_brightness) {
+  if (ClippedColor(x_rgb).saturated() || x_rgb[0] + x_rgb[1] + x_rgb[2] < kMarkerBrightness * center_brightness)
     return false;
   int n = 0;
   MarkerColor first = MarkerColor::Green;
@@ -88,7 +106,7 @@ bool noColorOfTheSeenDots(const float x_rgb[3], const ColorVec& x, uint8_t seen,
     if (!read[s] || (n > 0 && colors[s] != first)) return false;
     first = colors[s];
     ++n;
-    if (ClippedColor(rgb[s]).distance(x) <= 2 * kMinClassRadius) return false;
+    if (mayBeOneColor(x_rgb, rgb[s], 2 * kMinClassRadius)) return false;
   }
   return n > 0;
 }
@@ -168,8 +186,8 @@ void probeMissingSides(Hypothesis& r, const IdentityContext& c, const ColorVec& 
     if (!read[s] || (seen >> s & 1)) continue;
     int label =
         sideColorOfDot(dot[s], dot_rgb[s], green, pink, static_cast<float>(c.opt->weak_color_margin), colors[s]);
-    if (label < 0 && noColorOfTheSeenDots(dot_rgb[s], dot[s], seen, dot_rgb, read, seen_colors,
-                                          blobs[r.blob[0]].brightness())) {
+    if (label < 0 &&
+        noColorOfTheSeenDots(dot_rgb[s], seen, dot_rgb, read, seen_colors, blobs[r.blob[0]].brightness())) {
       const int o = __builtin_ctz(seen);
       colors[s] = seen_colors[o] == MarkerColor::Green ? MarkerColor::Pink : MarkerColor::Green;
       label = 0;
