@@ -70,8 +70,9 @@ int slotClippedBeyondItsNeighbours(const Hypothesis& r, const FieldMm at[4], con
 // Whether dot `x` and a seen dot `d` may be one marker color under two
 // lights, within `radius` in chromaticity: the nearest color `d` may have
 // (a clipped channel free to grow, ClippedColor) to `x` where `x` clipped
-// nowhere, and, where neither clipped two channels, their shares of those
-// two (a light scales both alike; the third, clipped, says only "more").
+// nowhere, and, where just two channels are clipped in neither dot, their
+// shares of those two (a light scales both alike; the third, clipped in
+// one of them, says only "more").
 bool mayBeOneColor(const float x[3], const float d[3], float radius) {
   const ClippedColor cx(x);
   if (!cx.clipped() && ClippedColor(d).distance(colorFeature(x[0], x[1], x[2])) > radius) return false;
